@@ -1,0 +1,123 @@
+// The interface a robotd driver plugin implements, and the one symbol it exports.
+//
+// Threads (see docs/design.md):
+//   configure, describe, connect, disconnect, recover, reset_zero — called by robotd's main or
+//     maintenance thread, never while the RT loop is calling read/write on this driver.
+//   read, write — called only by the device's RT thread at rate_hz. They must not allocate,
+//     lock a mutex another thread holds, log, or block beyond a short bounded time.
+//   call, diagnostics — called from non-RT threads while the RT loop runs; the driver makes
+//     them safe against read/write (atomics, lock-free queues).
+// Errors cross this boundary as values; no exception may escape a driver method.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "robotd/driver/types.hpp"
+#include "robotd/result.hpp"
+
+namespace robotd::driver {
+
+/// Bump when anything in this header or types.hpp changes layout or meaning.
+inline constexpr std::uint32_t kAbiVersion = 1;
+
+struct JointLimits {
+  double position_min_rad = -3.14;
+  double position_max_rad = 3.14;
+  double velocity_max_rad_s = 1.0;
+  double acceleration_max_rad_s2 = 5.0;
+  double effort_max_nm = 10.0;
+  double kp_max = 200.0;
+  double kd_max = 20.0;
+};
+
+struct JointDescription {
+  std::string name;
+  JointLimits limits;
+  double default_kp = 0;  // used when a command carries no gains
+  double default_kd = 0;  // also the damping gain for the DAMPING behaviour
+};
+
+struct OpDescription {
+  std::string name;
+  std::string help;  // one line: what it does, its JSON arguments with units
+};
+
+struct DeviceDescription {
+  std::string model;
+  double native_rate_hz = 1000;
+  std::vector<JointDescription> joints;
+  bool supports_torque = false;       // kImpedance commands: TORQUE and MIXED sessions
+  bool supports_damping = false;      // can hold joints with kp = 0, kd > 0
+  bool supports_zero_torque = false;  // can let joints go (kp = kd = torque = 0)
+  bool has_imu = false;
+  std::vector<OpDescription> ops;
+};
+
+using Diagnostics = std::vector<std::pair<std::string, std::string>>;
+
+class Driver {
+ public:
+  virtual ~Driver() = default;
+
+  /// Validates and applies the device's "params" object. Errors name the offending key path
+  /// relative to params (robotd prefixes the device's path).
+  virtual Result<void> configure(const nlohmann::json& params) = 0;
+  virtual DeviceDescription describe() const = 0;
+
+  virtual Result<void> connect() = 0;
+  virtual void disconnect() noexcept = 0;
+  /// Clears a latched fault and re-establishes the link if needed.
+  virtual Result<void> recover() = 0;
+  virtual Result<void> reset_zero(std::span<const int> joints) = 0;
+
+  virtual IoResult read(Feedback& out, FaultInfo& fault) noexcept = 0;
+  virtual IoResult write(const CommandFrame& command, FaultInfo& fault) noexcept = 0;
+
+  /// Vendor operations (gripper, I/O, queries, fault injection). `args` is a JSON object.
+  virtual Result<nlohmann::json> call(const std::string& op, const nlohmann::json& args) = 0;
+  virtual Diagnostics diagnostics() const = 0;
+};
+
+/// What a plugin's entry symbol returns. robotd refuses a plugin whose abi_version, or whose
+/// view of the RT structs' sizes, differs from its own.
+struct PluginInfo {
+  std::uint32_t abi_version;
+  std::uint32_t command_frame_size;
+  std::uint32_t feedback_size;
+  const char* name;
+  const char* version;
+  Driver* (*create)() noexcept;
+  void (*destroy)(Driver*) noexcept;
+};
+
+inline constexpr const char* kPluginEntrySymbol = "robotd_driver_plugin";
+using PluginEntry = const PluginInfo* (*)();
+
+}  // namespace robotd::driver
+
+/// Exports a driver class as a robotd plugin: ROBOTD_DRIVER_PLUGIN(SimDriver, "sim", "1.0.0")
+#define ROBOTD_DRIVER_PLUGIN(DriverClass, plugin_name, plugin_version)                                  \
+  extern "C" __attribute__((visibility("default"))) const robotd::driver::PluginInfo* robotd_driver_plugin() { \
+    static const robotd::driver::PluginInfo info{                                                          \
+        robotd::driver::kAbiVersion,                                                                      \
+        static_cast<std::uint32_t>(sizeof(robotd::driver::CommandFrame)),                                  \
+        static_cast<std::uint32_t>(sizeof(robotd::driver::Feedback)),                                      \
+        plugin_name,                                                                                      \
+        plugin_version,                                                                                   \
+        []() noexcept -> robotd::driver::Driver* {                                                         \
+          try {                                                                                           \
+            return new DriverClass();                                                                     \
+          } catch (...) {                                                                                 \
+            return nullptr;                                                                               \
+          }                                                                                               \
+        },                                                                                                \
+        [](robotd::driver::Driver* driver) noexcept { delete driver; }};                                   \
+    return &info;                                                                                         \
+  }

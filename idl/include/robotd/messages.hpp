@@ -1,0 +1,257 @@
+// The robotd DDS interface as plain C++ values. One struct per message in robotd_msgs.idl;
+// the wire library converts them to and from the idlc-generated C types. Units are SI and
+// radians, as on the wire.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace robotd {
+
+/// How a session commands its motors (RequestControl.control_mode).
+enum class ControlMode : std::int32_t { kPosition = 0, kTorque = 1, kMixed = 2 };
+
+/// What happens to a session's motors on timeout or release (default_behavior, release_mode).
+enum class Behavior : std::int32_t { kKeep = 0, kDamping = 1, kZeroTorque = 2 };
+
+/// DeviceStatus.state.
+enum class DeviceState : std::uint8_t {
+  kConnecting = 0,
+  kRunning = 1,
+  kFault = 2,
+  kEstop = 3,
+  kMaintenance = 4,  // recover or reset_zero in progress: commands and new sessions refused
+  kStopped = 5,
+};
+
+std::string_view to_string(ControlMode mode);
+std::string_view to_string(Behavior behavior);
+std::string_view to_string(DeviceState state);
+std::optional<ControlMode> parse_control_mode(std::string_view text);  // "POSITION", "position", "0"
+std::optional<Behavior> parse_behavior(std::string_view text);         // "KEEP", "damping", "2"
+bool is_valid(ControlMode mode);
+bool is_valid(Behavior behavior);
+
+struct Time {
+  std::int32_t sec = 0;
+  std::uint32_t nanosec = 0;
+  static Time from_ns(std::int64_t ns);
+  std::int64_t to_ns() const;
+};
+
+struct Header {
+  Time stamp;
+  std::string frame_id;
+};
+
+struct ControlCommand {
+  Header header;
+  std::string uuid;
+  std::vector<std::int32_t> motor_ids;
+  std::vector<float> positions;   // rad
+  std::vector<float> velocities;  // rad/s
+  std::vector<float> kp;          // N·m/rad
+  std::vector<float> kd;          // N·m·s/rad
+  std::vector<float> torques;     // N·m
+  std::string device;             // "" = the session's device
+  std::int64_t sent_steady_ns = 0;  // sender's CLOCK_MONOTONIC at publish, 0 = unknown
+};
+
+struct JointState {
+  Header header;  // frame_id = device name
+  std::vector<std::string> name;
+  std::vector<double> position;  // rad
+  std::vector<double> velocity;  // rad/s
+  std::vector<double> effort;    // N·m
+};
+
+struct Vector3 {
+  double x = 0, y = 0, z = 0;
+};
+struct Quaternion {
+  double x = 0, y = 0, z = 0, w = 1;
+};
+struct Imu {
+  Header header;  // frame_id = device name
+  Quaternion orientation;
+  Vector3 angular_velocity;     // rad/s
+  Vector3 linear_acceleration;  // m/s²
+};
+
+struct SessionInfo {
+  std::string uuid;
+  std::string node_name;
+  std::string device;
+  std::vector<std::int32_t> motor_ids;
+  ControlMode control_mode = ControlMode::kPosition;
+  Behavior default_behavior = Behavior::kKeep;
+  Behavior applied_behavior = Behavior::kKeep;  // what the device really does on timeout
+  std::int32_t timeout_ms = 0;
+  std::int32_t time_left_ms = 0;
+  Time granted_at;  // CLOCK_REALTIME
+  std::uint64_t commands_accepted = 0;
+};
+
+struct SessionStatus {
+  Header header;
+  std::string state;  // "idle" or "active"
+  std::string policy_name;
+  std::string policy_file_name;
+  std::vector<std::string> active_uuids;
+  std::vector<std::string> node_names;
+  std::vector<std::int32_t> motor_counts;
+  std::vector<SessionInfo> sessions;
+};
+
+struct LoopStatistics {
+  double rate_hz = 0;
+  bool realtime = false;  // SCHED_FIFO granted
+  std::uint64_t ticks = 0;
+  std::uint64_t overruns = 0;
+  std::uint32_t window_ticks = 0;
+  float period_p50_us = 0, period_p99_us = 0, period_max_us = 0;
+  float wake_latency_p50_us = 0, wake_latency_p99_us = 0, wake_latency_max_us = 0;
+  float execution_p50_us = 0, execution_p99_us = 0, execution_max_us = 0;
+  std::int64_t rt_heap_allocations = -1;  // -1 = not measured (no allocation probe loaded)
+};
+
+struct CommandCounters {
+  std::uint64_t received = 0;
+  std::uint64_t accepted = 0;
+  std::uint64_t clamped = 0;
+  std::uint64_t rejected_unknown_session = 0;
+  std::uint64_t rejected_wrong_device = 0;
+  std::uint64_t rejected_not_owner = 0;
+  std::uint64_t rejected_unknown_motor = 0;
+  std::uint64_t rejected_malformed = 0;
+  std::uint64_t rejected_non_finite = 0;
+  std::uint64_t rejected_out_of_range = 0;
+  std::uint64_t rejected_estop = 0;
+  std::uint64_t rejected_fault = 0;
+  std::uint64_t dropped_stale = 0;
+  std::uint64_t rejected_total() const;
+};
+
+struct KeyValue {
+  std::string key;
+  std::string value;
+};
+
+struct DeviceStatus {
+  Header header;
+  std::string device;
+  std::string driver;
+  DeviceState state = DeviceState::kConnecting;
+  std::string state_text;
+  std::int32_t fault_code = 0;
+  std::string fault_text;
+  bool estop_engaged = false;
+  LoopStatistics loop;
+  CommandCounters commands;
+  std::vector<KeyValue> driver_values;
+};
+
+struct DeviceInfo {
+  std::string name;
+  std::string driver;
+  std::string driver_version;
+  std::string model;
+  double rate_hz = 0;
+  double native_rate_hz = 0;
+  std::vector<std::string> joint_names;
+  std::vector<double> position_min;      // rad
+  std::vector<double> position_max;      // rad
+  std::vector<double> velocity_max;      // rad/s
+  std::vector<double> acceleration_max;  // rad/s²
+  std::vector<double> effort_max;        // N·m
+  std::vector<std::string> control_modes;
+  std::vector<std::int32_t> behavior_map;  // applied behaviour for KEEP, DAMPING, ZERO_TORQUE
+  std::vector<std::string> ops;            // device_call ops, "name: help"
+  DeviceState state = DeviceState::kConnecting;
+};
+
+// Services. Each request/response pair mirrors robotd_msgs/srv/<Name>.srv.
+
+struct RequestControlRequest {
+  std::string node_name;
+  std::vector<std::int32_t> motor_ids;  // empty = every motor of the device
+  ControlMode control_mode = ControlMode::kPosition;
+  Behavior default_behavior = Behavior::kDamping;
+  std::int32_t timeout_ms = 1000;
+  std::vector<float> default_kp;  // empty or one per motor
+  std::vector<float> default_kd;
+  std::string device;  // "" = the only device
+};
+struct RequestControlResponse {
+  bool success = false;
+  std::string message;
+  std::string uuid;
+  std::vector<std::int32_t> motor_ids;
+  Behavior applied_behavior = Behavior::kKeep;
+};
+
+struct ReleaseControlRequest {
+  std::string node_name;
+  std::string uuid;
+  Behavior release_mode = Behavior::kKeep;
+};
+struct ReleaseControlResponse {
+  bool success = false;
+  std::string message;
+  Behavior applied_behavior = Behavior::kKeep;
+};
+
+struct GetAvailableMotorsRequest {
+  std::string node_name;
+  std::string device;
+};
+struct GetAvailableMotorsResponse {
+  std::vector<std::int32_t> motor_ids;
+  std::vector<std::string> motor_names;
+  bool success = false;
+  std::string message;
+};
+
+struct ResetZeroRequest {
+  std::string device;
+  std::vector<std::int32_t> motor_ids;  // empty = all
+  std::int32_t timeout_ms = 10000;
+};
+struct ResetZeroResponse {
+  bool success = false;
+  std::string message;
+};
+
+struct EstopRequest {
+  std::string node_name;
+  std::string device;  // "" = every device
+  bool engage = true;  // false = reset
+  std::string reason;
+};
+struct EstopResponse {
+  bool success = false;
+  std::string message;
+};
+
+struct ListDevicesRequest {
+  std::string node_name;
+};
+struct ListDevicesResponse {
+  std::vector<DeviceInfo> devices;
+};
+
+struct DeviceCallRequest {
+  std::string device;
+  std::string op;
+  std::string args_json = "{}";
+};
+struct DeviceCallResponse {
+  bool success = false;
+  std::string message;
+  std::string result_json;
+};
+
+}  // namespace robotd

@@ -1,0 +1,27 @@
+#include "wire/qos.hpp"
+
+namespace robotd::wire {
+namespace {
+
+QosPtr base_qos(int depth) {
+  QosPtr qos(dds_create_qos());
+  dds_qset_reliability(qos.get(), DDS_RELIABILITY_RELIABLE, DDS_MSECS(100));
+  dds_qset_history(qos.get(), DDS_HISTORY_KEEP_LAST, depth);
+  const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+  dds_qset_data_representation(qos.get(), 1, &xcdr1);
+  return qos;
+}
+
+}  // namespace
+
+QosPtr reliable_qos(int depth) { return base_qos(depth); }
+
+QosPtr transient_local_qos(int depth) {
+  QosPtr qos = base_qos(depth);
+  dds_qset_durability(qos.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  return qos;
+}
+
+QosPtr service_qos() { return base_qos(10); }
+
+}  // namespace robotd::wire

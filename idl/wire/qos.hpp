@@ -1,0 +1,21 @@
+// QoS profiles, chosen to match ROS 2 defaults so rmw_cyclonedds nodes interoperate:
+// reliable, volatile, keep-last; session status is transient-local so late joiners see who
+// holds what. Every profile pins XCDR1, the only representation rmw_cyclonedds accepts.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <memory>
+
+namespace robotd::wire {
+
+struct QosDeleter {
+  void operator()(dds_qos_t* qos) const { dds_delete_qos(qos); }
+};
+using QosPtr = std::unique_ptr<dds_qos_t, QosDeleter>;
+
+QosPtr reliable_qos(int depth);        // ROS default profile: reliable, volatile, keep last `depth`
+QosPtr transient_local_qos(int depth);  // reliable, transient local, keep last `depth`
+QosPtr service_qos();                   // ROS services default: reliable, volatile, keep last 10
+
+}  // namespace robotd::wire
