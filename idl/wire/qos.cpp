@@ -19,6 +19,10 @@ QosPtr reliable_qos(int depth) { return base_qos(depth); }
 QosPtr transient_local_qos(int depth) {
   QosPtr qos = base_qos(depth);
   dds_qset_durability(qos.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  // What a late joiner gets is the durability-service history (Cyclone's default: the last
+  // sample only), not the writer's history; rmw_cyclonedds sets both to the same depth.
+  dds_qset_durability_service(qos.get(), 0, DDS_HISTORY_KEEP_LAST, depth, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED,
+                              DDS_LENGTH_UNLIMITED);
   return qos;
 }
 

@@ -16,7 +16,11 @@ bool participant_of_publication(dds_entity_t reader, dds_instance_handle_t publi
 
 bool writer_reaches(dds_entity_t writer, const dds_guid_t& participant) {
   std::vector<dds_instance_handle_t> handles(64);
-  const dds_return_t count = dds_get_matched_subscriptions(writer, handles.data(), handles.size());
+  dds_return_t count = dds_get_matched_subscriptions(writer, handles.data(), handles.size());
+  if (count > static_cast<dds_return_t>(handles.size())) {  // more clients than fit: fetch them all
+    handles.resize(static_cast<std::size_t>(count));
+    count = dds_get_matched_subscriptions(writer, handles.data(), handles.size());
+  }
   for (dds_return_t i = 0; i < count && static_cast<std::size_t>(i) < handles.size(); ++i) {
     dds_builtintopic_endpoint_t* endpoint =
         dds_get_matched_subscription_data(writer, handles[static_cast<std::size_t>(i)]);

@@ -176,6 +176,12 @@ std::optional<std::vector<double>> JsonReader::number_array(std::string_view key
   return out;
 }
 
+std::optional<nlohmann::json> JsonReader::raw(std::string_view key) {
+  const nlohmann::json* value = find(key);
+  if (value == nullptr) return std::nullopt;
+  return *value;
+}
+
 std::optional<JsonReader> JsonReader::object(std::string_view key) {
   const nlohmann::json* value = find(key);
   if (value == nullptr) return std::nullopt;

@@ -46,6 +46,9 @@ class JsonReader {
   /// Each key/value of the object at `key`, for maps keyed by name (e.g. joint overrides).
   std::vector<std::pair<std::string, JsonReader>> object_map(std::string_view key);
 
+  /// The value at `key` as is, for a part validated elsewhere (a driver's params).
+  std::optional<nlohmann::json> raw(std::string_view key);
+
   /// Records an error for a key that is required but missing.
   void require(std::string_view key, std::string_view what);
   void error(std::string_view key, const std::string& message);

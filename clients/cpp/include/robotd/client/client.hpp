@@ -1,0 +1,70 @@
+// The robotd C++ client: a thin typed layer over robotd's DDS topics and services. It holds
+// no control logic: every decision (ownership, limits, timeouts) is robotd's.
+//
+//   auto client = robotd::Client::connect();
+//   auto session = client.value().request_control({.device = "arm"});
+//   session.value().send_positions({0.1F, 0, 0, 0, 0, 0});
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "robotd/client/options.hpp"
+#include "robotd/client/session.hpp"
+#include "robotd/client/subscription.hpp"
+#include "robotd/messages.hpp"
+#include "robotd/result.hpp"
+
+namespace robotd {
+
+class Client {
+ public:
+  /// Joins robotd's DDS domain. Succeeds even if robotd is not running; calls then fail
+  /// with ErrorCode::kNotAvailable after the service timeout.
+  static Result<Client> connect(ClientOptions options = ClientOptions::from_environment());
+
+  Client(Client&&) noexcept;
+  Client& operator=(Client&&) noexcept;
+  ~Client();
+
+  const ClientOptions& options() const;
+
+  // Services. Each waits at most options().service_timeout.
+  Result<std::vector<DeviceInfo>> list_devices();
+  Result<Session> request_control(const SessionRequest& request);
+  Result<ReleaseControlResponse> release_control(const std::string& uuid, Behavior release_mode);
+  Result<GetAvailableMotorsResponse> available_motors(const std::string& device = "");
+  Result<void> estop(const std::string& device = "", const std::string& reason = "");
+  Result<void> reset_estop(const std::string& device = "");
+  /// Blocks until robotd has zeroed the motors (up to `timeout`, plus the service timeout).
+  Result<void> reset_zero(const std::string& device, const std::vector<std::int32_t>& motor_ids,
+                          std::chrono::milliseconds timeout = std::chrono::seconds(10));
+  /// A device operation (driver op or robotd's recover / blackbox); returns its JSON result.
+  Result<std::string> device_call(const std::string& device, const std::string& op,
+                                  const std::string& args_json = "{}",
+                                  std::chrono::milliseconds timeout = std::chrono::seconds(10));
+
+  // Topics. Callbacks run on the client's dispatch thread.
+  Subscription on_joint_states(std::function<void(const JointState&)> callback);
+  Subscription on_session_status(std::function<void(const SessionStatus&)> callback);
+  Subscription on_device_status(std::function<void(const DeviceStatus&)> callback);
+  Subscription on_imu(std::function<void(const Imu&)> callback);
+
+  /// The next JointState / DeviceStatus of `device` ("" = any), or a timeout error.
+  Result<JointState> next_joint_state(const std::string& device, std::chrono::milliseconds timeout);
+  Result<DeviceStatus> next_device_status(const std::string& device, std::chrono::milliseconds timeout);
+  /// The current /session_status (transient local: available as soon as robotd is reachable).
+  Result<SessionStatus> session_status(std::chrono::milliseconds timeout);
+
+  /// Publishes a raw ControlCommand (no checks here; robotd checks everything).
+  Result<void> publish(const ControlCommand& command);
+
+ private:
+  explicit Client(std::shared_ptr<detail::ClientCore> core);
+  std::shared_ptr<detail::ClientCore> core_;
+};
+
+}  // namespace robotd

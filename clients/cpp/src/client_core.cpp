@@ -1,0 +1,49 @@
+#include "client_core.hpp"
+
+#include "wire/qos.hpp"
+#include "wire/topics.hpp"
+
+namespace robotd::detail {
+namespace {
+
+template <class Client>
+Result<void> make_client(const wire::Participant& participant, const char* service, std::unique_ptr<Client>& out) {
+  auto created = Client::create(participant, service);
+  if (!created) return created.error();
+  out = std::move(created.value());
+  return {};
+}
+
+constexpr int kCommandHistoryDepth = 8;
+
+}  // namespace
+
+Result<std::shared_ptr<ClientCore>> ClientCore::create(const ClientOptions& options) {
+  wire::DdsSettings settings;
+  settings.domain_id = options.domain_id;
+  settings.network_interface = options.network_interface;
+  settings.multicast = options.multicast;
+  settings.peers = options.peers;
+  settings.cyclonedds_xml = options.cyclonedds_xml;
+  auto participant = wire::Participant::create(settings);
+  if (!participant) return participant.error();
+
+  std::shared_ptr<ClientCore> core(new ClientCore(options, std::move(participant.value())));
+  for (auto result : {make_client(core->participant, "request_control", core->request_control),
+                      make_client(core->participant, "release_control", core->release_control),
+                      make_client(core->participant, "get_available_motors", core->available_motors),
+                      make_client(core->participant, "reset_zero", core->reset_zero),
+                      make_client(core->participant, "estop", core->estop),
+                      make_client(core->participant, "list_devices", core->list_devices),
+                      make_client(core->participant, "device_call", core->device_call)}) {
+    if (!result) return result.error();
+  }
+  const auto qos = wire::reliable_qos(kCommandHistoryDepth);
+  auto commands = wire::TopicWriter<ControlCommand>::create(core->participant, wire::kControlCommandTopic, qos.get());
+  if (!commands) return commands.error();
+  core->commands = std::make_unique<wire::TopicWriter<ControlCommand>>(std::move(commands.value()));
+  core->dispatcher = std::make_shared<Dispatcher>(core->participant);
+  return core;
+}
+
+}  // namespace robotd::detail

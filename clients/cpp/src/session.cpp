@@ -1,0 +1,97 @@
+#include "robotd/client/session.hpp"
+
+#include <ctime>
+
+#include "client_core.hpp"
+
+namespace robotd {
+namespace {
+
+std::int64_t clock_ns(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+Session::Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, const SessionRequest& request,
+                 std::vector<std::int32_t> motor_ids, Behavior applied_behavior)
+    : core_(std::move(core)),
+      uuid_(std::move(uuid)),
+      device_(request.device),
+      motor_ids_(std::move(motor_ids)),
+      mode_(request.mode),
+      applied_behavior_(applied_behavior),
+      release_behavior_(request.on_release),
+      timeout_(request.timeout),
+      last_sent_(std::chrono::steady_clock::now()) {}
+
+Session::Session(Session&& other) noexcept = default;
+
+Session& Session::operator=(Session&& other) noexcept {
+  if (this != &other) {
+    if (active()) (void)release(release_behavior_);
+    core_ = std::move(other.core_);
+    uuid_ = std::move(other.uuid_);
+    device_ = std::move(other.device_);
+    motor_ids_ = std::move(other.motor_ids_);
+    mode_ = other.mode_;
+    applied_behavior_ = other.applied_behavior_;
+    release_behavior_ = other.release_behavior_;
+    timeout_ = other.timeout_;
+    last_sent_ = other.last_sent_;
+  }
+  return *this;
+}
+
+Session::~Session() {
+  if (active()) (void)release(release_behavior_);
+}
+
+Result<void> Session::command(const Command& command) {
+  if (!active()) return make_error(ErrorCode::kInvalidArgument, "this session has been released");
+  ControlCommand message;
+  message.header.stamp = Time::from_ns(clock_ns(CLOCK_REALTIME));
+  message.uuid = uuid_;
+  message.device = device_;
+  // Values without motor ids address the session's motors in order; no values at all is a keepalive.
+  const bool has_values = !command.positions.empty() || !command.velocities.empty() || !command.kp.empty() ||
+                          !command.kd.empty() || !command.torques.empty();
+  message.motor_ids = command.motor_ids.empty() && has_values ? motor_ids_ : command.motor_ids;
+  message.positions = command.positions;
+  message.velocities = command.velocities;
+  message.kp = command.kp;
+  message.kd = command.kd;
+  message.torques = command.torques;
+  message.sent_steady_ns = clock_ns(CLOCK_MONOTONIC);
+  auto written = core_->commands->write(message);
+  if (written) last_sent_ = std::chrono::steady_clock::now();
+  return written;
+}
+
+Result<void> Session::send_positions(const std::vector<float>& positions_rad) {
+  return command(Command{motor_ids_, positions_rad, {}, {}, {}, {}});
+}
+
+Result<void> Session::keepalive() { return command(Command{}); }
+
+std::chrono::milliseconds Session::time_left() const {
+  const auto elapsed =
+      std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - last_sent_);
+  return elapsed >= timeout_ ? std::chrono::milliseconds(0) : timeout_ - elapsed;
+}
+
+Result<ReleaseControlResponse> Session::release(Behavior release_mode) {
+  if (!active()) return make_error(ErrorCode::kInvalidArgument, "this session has already been released");
+  auto core = std::move(core_);
+  auto response = core->release_control->call(ReleaseControlRequest{core->options.node_name, uuid_, release_mode},
+                                              core->options.service_timeout);
+  if (!response) return response.error();
+  if (!response.value().success) {
+    return make_error(ErrorCode::kRefused, "robotd refused /release_control: " + response.value().message);
+  }
+  return response;
+}
+
+}  // namespace robotd

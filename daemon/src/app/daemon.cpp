@@ -1,0 +1,181 @@
+#include "app/daemon.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "plugin/plugin_loader.hpp"
+#include "rt/realtime_environment.hpp"
+#include "wire/qos.hpp"
+#include "wire/topics.hpp"
+
+namespace robotd::app {
+namespace {
+
+// Deep enough that a subscriber that misses a few 1 kHz samples can still catch up.
+constexpr int kStateHistoryDepth = 10;
+
+}  // namespace
+
+Daemon::Daemon(config::Config config) : config_(std::move(config)) {}
+
+Daemon::~Daemon() { stop(); }
+
+Result<void> Daemon::start() {
+  const rt::EnvironmentReport environment = rt::inspect_environment();
+  spdlog::info("real-time check: {}", rt::describe(environment));
+  for (const auto& warning : environment.warnings) spdlog::warn("real-time check: {}", warning);
+
+  const bool wants_realtime = std::any_of(config_.devices.begin(), config_.devices.end(), [](const auto& device) {
+    return device.realtime != rt::RealtimePolicy::kOff;
+  });
+  if (wants_realtime) {
+    if (const std::string failure = rt::lock_memory(); !failure.empty()) {
+      const bool required = std::any_of(config_.devices.begin(), config_.devices.end(), [](const auto& device) {
+        return device.realtime == rt::RealtimePolicy::kRequire;
+      });
+      if (required) return make_error(ErrorCode::kRefused, "a device has realtime: require, but " + failure);
+      spdlog::warn("{}", failure);
+    }
+  }
+  if (auto devices = start_devices(); !devices) return devices;
+  return start_dds();
+}
+
+Result<void> Daemon::start_devices() {
+  const auto search_path = plugin::plugin_search_path(config_.daemon.plugin_dirs);
+  for (const auto& device_config : config_.devices) {
+    const auto fail = [&](const Error& error) -> Result<void> {
+      if (device_config.required) return make_error(error.code, error.message + " (the device is required)");
+      spdlog::error("{} — continuing without device '{}' (required: false)", error.message, device_config.name);
+      return {};
+    };
+    auto loaded = plugin::load_driver(device_config.driver, search_path);
+    if (!loaded) {
+      if (auto result = fail(make_error(loaded.error().code, device_config.path + ": " + loaded.error().message));
+          !result) {
+        return result;
+      }
+      continue;
+    }
+    auto device = std::make_unique<device::Device>(device_config, std::move(loaded.value()));
+    if (auto configured = device->configure(); !configured) {
+      if (auto result = fail(configured.error()); !result) return result;
+      continue;
+    }
+    if (auto started = device->start(); !started) {
+      if (auto result = fail(started.error()); !result) return result;
+      continue;
+    }
+    const auto& model = device->model();
+    spdlog::info("device '{}': driver {} {} ({}), {} joints, {} Hz loop; {}", model.name, model.driver,
+                 model.driver_version, model.model, model.joint_count(), model.rate_hz,
+                 device->thread_start().report);
+    if (!device->thread_start().realtime && device_config.realtime != rt::RealtimePolicy::kOff) {
+      spdlog::warn("device '{}': loop is NOT real-time: {}", model.name, device->thread_start().report);
+    }
+    devices_.push_back(std::move(device));
+  }
+  if (devices_.empty()) return make_error(ErrorCode::kRefused, "no device could be started");
+  for (auto& device : devices_) {
+    device_ptrs_.push_back(device.get());
+    black_boxes_.push_back(std::make_unique<device::BlackBox>(device->channel(), device->model()));
+  }
+  watched_ticks_.assign(devices_.size(), 0);
+  return {};
+}
+
+Result<void> Daemon::start_dds() {
+  auto participant = wire::Participant::create(config_.dds);
+  if (!participant) return participant.error();
+  participant_ = std::make_unique<wire::Participant>(std::move(participant.value()));
+
+  const auto state_qos = wire::reliable_qos(kStateHistoryDepth);
+  auto joint_states = wire::TopicWriter<JointState>::create(*participant_, wire::kJointStatesTopic, state_qos.get());
+  if (!joint_states) return joint_states.error();
+  joint_states_ = std::make_unique<wire::TopicWriter<JointState>>(std::move(joint_states.value()));
+  auto imu = wire::TopicWriter<Imu>::create(*participant_, wire::kImuTopic, state_qos.get());
+  if (!imu) return imu.error();
+  imu_ = std::make_unique<wire::TopicWriter<Imu>>(std::move(imu.value()));
+  auto device_status = wire::TopicWriter<DeviceStatus>::create(*participant_, wire::kDeviceStatusTopic, state_qos.get());
+  if (!device_status) return device_status.error();
+  device_status_ = std::make_unique<wire::TopicWriter<DeviceStatus>>(std::move(device_status.value()));
+
+  auto session_status = dds::SessionStatusPublisher::create(
+      *participant_, std::chrono::milliseconds(config_.daemon.session_status_period_ms));
+  if (!session_status) return session_status.error();
+  session_status_ = std::move(session_status.value());
+
+  sessions_ = std::make_unique<service::SessionService>(
+      device_ptrs_,
+      session::SessionLimits{config_.daemon.min_session_timeout_ms, config_.daemon.max_session_timeout_ms},
+      [this] { session_status_->changed(); });
+  intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_);
+
+  std::vector<device::BlackBox*> boxes;
+  for (auto& box : black_boxes_) boxes.push_back(box.get());
+  device_services_ = std::make_unique<service::DeviceServices>(
+      device_ptrs_, boxes, *sessions_, [this](std::size_t index) { return publishers_[index]->latest(); });
+  auto services = dds::ServiceHost::create(*participant_, *sessions_, *device_services_);
+  if (!services) return services.error();
+  services_ = std::move(services.value());
+
+  const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get()};
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    publishers_.push_back(std::make_unique<dds::StatePublisher>(*devices_[i], i, writers, *sessions_,
+                                                                intake_->counters(i), *black_boxes_[i],
+                                                                config_.daemon));
+    publishers_.back()->start();
+  }
+  session_status_->start(*sessions_);
+  if (auto started = intake_->start(); !started) return started;
+  services_->start();
+  spdlog::info("DDS: domain {}, {}", config_.dds.domain_id,
+               config_.dds.cyclonedds_xml.empty()
+                   ? "interface " + (config_.dds.network_interface.empty() ? std::string("(auto)")
+                                                                             : config_.dds.network_interface) +
+                         (config_.dds.multicast ? ", multicast" : ", no multicast")
+                   : std::string("custom Cyclone DDS XML"));
+  return {};
+}
+
+void Daemon::stop() {
+  if (stopped_) return;
+  stopped_ = true;
+  if (services_) services_->stop();
+  if (intake_) intake_->stop();
+  for (auto& device : devices_) device->request_stop();  // all devices stop in parallel
+  for (auto& device : devices_) device->stop();
+  for (auto& publisher : publishers_) publisher->finish();
+  if (session_status_) session_status_->stop();
+  publishers_.clear();
+  services_.reset();
+  intake_.reset();
+  device_services_.reset();
+  sessions_.reset();
+  session_status_.reset();
+  joint_states_.reset();
+  imu_.reset();
+  device_status_.reset();
+  participant_.reset();
+  spdlog::info("robotd stopped: every device brought to its safe stop and disconnected");
+}
+
+std::string Daemon::loop_problem() {
+  std::string problem;
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    const std::uint64_t ticks = devices_[i]->channel().ticks.load(std::memory_order_acquire);
+    if (ticks == watched_ticks_[i]) problem += "loop of '" + devices_[i]->model().name + "' is not ticking; ";
+    watched_ticks_[i] = ticks;
+  }
+  return problem;
+}
+
+std::string Daemon::summary() const {
+  std::string text = "serving";
+  for (const auto& device : devices_) {
+    text += " " + device->model().name + " (" + device->model().driver + ", " +
+            std::to_string(device->model().joint_count()) + " joints)";
+  }
+  return text + " on DDS domain " + std::to_string(config_.dds.domain_id);
+}
+
+}  // namespace robotd::app

@@ -1,0 +1,60 @@
+// robotd as a whole: builds every part from the config, starts them in dependency order and
+// stops them in reverse, bringing each device to its safe stop before its driver disconnects.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "dds/command_intake.hpp"
+#include "dds/service_host.hpp"
+#include "dds/session_status_publisher.hpp"
+#include "dds/state_publisher.hpp"
+#include "device/black_box.hpp"
+#include "device/device.hpp"
+#include "service/device_services.hpp"
+#include "service/session_service.hpp"
+#include "wire/participant.hpp"
+
+namespace robotd::app {
+
+class Daemon {
+ public:
+  explicit Daemon(config::Config config);
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+  ~Daemon();
+
+  /// Starts everything. Fails if a required device cannot start, or no device can.
+  Result<void> start();
+  /// Safe stop of every device, then everything else, in reverse order.
+  void stop();
+
+  /// "" while every device loop ticks; otherwise which one is stuck (for the watchdog).
+  std::string loop_problem();
+  std::string summary() const;
+
+ private:
+  Result<void> start_devices();
+  Result<void> start_dds();
+
+  config::Config config_;
+  std::vector<std::unique_ptr<device::Device>> devices_;
+  std::vector<device::Device*> device_ptrs_;
+  std::vector<std::unique_ptr<device::BlackBox>> black_boxes_;
+  std::unique_ptr<wire::Participant> participant_;
+  std::unique_ptr<wire::TopicWriter<JointState>> joint_states_;
+  std::unique_ptr<wire::TopicWriter<Imu>> imu_;
+  std::unique_ptr<wire::TopicWriter<DeviceStatus>> device_status_;
+  std::unique_ptr<dds::SessionStatusPublisher> session_status_;
+  std::unique_ptr<service::SessionService> sessions_;
+  std::unique_ptr<service::DeviceServices> device_services_;
+  std::unique_ptr<dds::CommandIntake> intake_;
+  std::unique_ptr<dds::ServiceHost> services_;
+  std::vector<std::unique_ptr<dds::StatePublisher>> publishers_;
+  std::vector<std::uint64_t> watched_ticks_;
+  bool stopped_ = false;
+};
+
+}  // namespace robotd::app

@@ -1,0 +1,50 @@
+// Warnings that can repeat at 1 kHz (a client streaming bad commands) are logged at most once
+// per interval per key, with a count of what was suppressed.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+namespace robotd::app {
+
+class ThrottledLog {
+ public:
+  explicit ThrottledLog(std::chrono::milliseconds interval = std::chrono::seconds(1)) : interval_(interval) {}
+
+  void warn(const std::string& key, const std::string& message) {
+    const auto now = std::chrono::steady_clock::now();
+    std::uint64_t suppressed = 0;
+    {
+      const std::lock_guard lock(mutex_);
+      Entry& entry = entries_[key];
+      if (entry.last_logged.time_since_epoch().count() != 0 && now - entry.last_logged < interval_) {
+        ++entry.suppressed;
+        return;
+      }
+      suppressed = entry.suppressed;
+      entry.suppressed = 0;
+      entry.last_logged = now;
+    }
+    if (suppressed > 0) {
+      spdlog::warn("{} ({} similar messages suppressed)", message, suppressed);
+    } else {
+      spdlog::warn("{}", message);
+    }
+  }
+
+ private:
+  struct Entry {
+    std::chrono::steady_clock::time_point last_logged{};
+    std::uint64_t suppressed = 0;
+  };
+  std::chrono::milliseconds interval_;
+  std::mutex mutex_;
+  std::map<std::string, Entry> entries_;
+};
+
+}  // namespace robotd::app

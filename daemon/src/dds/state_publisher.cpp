@@ -1,0 +1,188 @@
+#include "dds/state_publisher.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "rt/monotonic_clock.hpp"
+
+namespace robotd::dds {
+namespace {
+
+std::string state_text(const device::LoopState& state, const std::string& estop_note) {
+  std::string text(to_string(state.state));
+  if (state.state == DeviceState::kFault) text += ": " + std::string(state.fault.text.data());
+  if (state.estop && !estop_note.empty()) text += " (e-stop " + estop_note + ")";
+  return text;
+}
+
+const char* session_end_text(device::LoopEvent::Type type) {
+  switch (type) {
+    case device::LoopEvent::Type::kSessionTimedOut: return "timed out";
+    case device::LoopEvent::Type::kSessionReleased: return "released";
+    case device::LoopEvent::Type::kSessionEndedByShutdown: return "ended by shutdown";
+    default: return "ended";
+  }
+}
+
+}  // namespace
+
+StatePublisher::StatePublisher(device::Device& device, std::size_t device_index, StateWriters writers,
+                               service::SessionService& sessions, const service::CommandCounterSet& counters,
+                               device::BlackBox& black_box, const config::DaemonConfig& daemon)
+    : device_(device),
+      device_index_(device_index),
+      writers_(writers),
+      sessions_(sessions),
+      counters_(counters),
+      black_box_(black_box),
+      daemon_(daemon),
+      window_(static_cast<std::size_t>(daemon.stats_window_ticks)) {
+  const auto& model = device.model();
+  joint_state_.header.frame_id = model.name;
+  joint_state_.name = model.joint_names;
+  joint_state_.position.resize(model.joint_count());
+  joint_state_.velocity.resize(model.joint_count());
+  joint_state_.effort.resize(model.joint_count());
+}
+
+StatePublisher::~StatePublisher() {
+  stopping_.store(true);
+  if (thread_.joinable()) thread_.join();
+}
+
+void StatePublisher::start() { thread_ = std::thread([this] { run(); }); }
+
+void StatePublisher::run() {
+  pthread_setname_np(pthread_self(), ("pub-" + device_.model().name).substr(0, 15).c_str());
+  const auto& config = device_.config();
+  const int state_rate = config.joint_state_rate_hz > 0 ? config.joint_state_rate_hz : config.rate_hz;
+  const std::int64_t period_ns = rt::kNsPerSecond / state_rate;
+  const std::int64_t status_period_ns = rt::kNsPerSecond / daemon_.status_rate_hz;
+  std::int64_t next = rt::monotonic_now_ns();
+  std::int64_t next_status = next;
+  while (!stopping_.load()) {
+    drain_loop(true);
+    const std::int64_t now = rt::monotonic_now_ns();
+    if (now >= next_status) {
+      publish_device_status();
+      next_status = now + status_period_ns;
+    }
+    next += period_ns;
+    if (next < now) next = now + period_ns;  // fell behind: skip rather than burst
+    rt::sleep_until_ns(next);
+  }
+}
+
+void StatePublisher::finish() {
+  stopping_.store(true);
+  if (thread_.joinable()) thread_.join();
+  drain_loop(false);
+  publish_device_status();
+  writers_.device_status->wait_for_acks(DDS_MSECS(500));
+}
+
+void StatePublisher::drain_loop(bool publish_state) {
+  device::DeviceChannel& channel = device_.channel();
+  while (auto timing = channel.timings.pop()) window_.add(*timing);
+  while (auto event = channel.loop_events.pop()) handle(*event);
+  if (const device::LoopState* state = channel.state.take()) {
+    {
+      const std::lock_guard lock(latest_mutex_);
+      latest_ = *state;
+    }
+    if (publish_state) publish_joint_state(*state);
+  }
+}
+
+void StatePublisher::handle(const device::LoopEvent& event) {
+  const std::string& name = device_.model().name;
+  switch (event.type) {
+    case device::LoopEvent::Type::kSessionTimedOut:
+    case device::LoopEvent::Type::kSessionReleased:
+    case device::LoopEvent::Type::kSessionEndedByShutdown: {
+      const auto ended = sessions_.session_ended(device_index_, event.slot, event.generation);
+      if (event.type == device::LoopEvent::Type::kSessionTimedOut) {
+        spdlog::warn("device '{}': session {} of node '{}' timed out after {} ms without a command; motors {}", name,
+                     ended ? ended->uuid : "?", ended ? ended->node_name : "?", event.silence_ns / rt::kNsPerMs,
+                     to_string(event.behavior));
+      } else {
+        spdlog::info("device '{}': session in slot {} {}; motors {}", name, event.slot,
+                     session_end_text(event.type), to_string(event.behavior));
+      }
+      break;
+    }
+    case device::LoopEvent::Type::kFaultLatched:
+      spdlog::error("device '{}': FAULT {} ({}); joints {}; clear with: robotctl call {} recover", name,
+                    event.fault.code, event.fault.text.data(), to_string(event.behavior), name);
+      break;
+    case device::LoopEvent::Type::kEstopApplied:
+      spdlog::warn("device '{}': e-stop applied ({}), joints {}", name, device_.estop_note(), to_string(event.behavior));
+      break;
+    case device::LoopEvent::Type::kEstopCleared: spdlog::info("device '{}': e-stop reset", name); break;
+    case device::LoopEvent::Type::kBlackBoxFrozen: {
+      const device::LoopState state = latest();
+      const std::string reason =
+          state.state == DeviceState::kFault ? std::string("fault: ") + state.fault.text.data() : "requested";
+      if (black_box_.capture_if_frozen(reason)) spdlog::info("{}", black_box_.summary());
+      break;
+    }
+  }
+}
+
+void StatePublisher::publish_joint_state(const device::LoopState& state) {
+  if (state.state == DeviceState::kConnecting) return;
+  const std::size_t count = device_.model().joint_count();
+  joint_state_.header.stamp = Time::from_ns(rt::realtime_now_ns());
+  for (std::size_t j = 0; j < count; ++j) {
+    joint_state_.position[j] = state.feedback.joints[j].position_rad;
+    joint_state_.velocity[j] = state.feedback.joints[j].velocity_rad_s;
+    joint_state_.effort[j] = state.feedback.joints[j].effort_nm;
+  }
+  (void)writers_.joint_states->write(joint_state_);
+  if (device_.model().has_imu && state.feedback.has_imu && writers_.imu != nullptr) {
+    const driver::ImuSample& sample = state.feedback.imu;
+    Imu imu;
+    imu.header = joint_state_.header;
+    imu.orientation = {sample.orientation_xyzw[0], sample.orientation_xyzw[1], sample.orientation_xyzw[2],
+                       sample.orientation_xyzw[3]};
+    imu.angular_velocity = {sample.angular_velocity_rad_s[0], sample.angular_velocity_rad_s[1],
+                            sample.angular_velocity_rad_s[2]};
+    imu.linear_acceleration = {sample.linear_acceleration_m_s2[0], sample.linear_acceleration_m_s2[1],
+                               sample.linear_acceleration_m_s2[2]};
+    (void)writers_.imu->write(imu);
+  }
+}
+
+DeviceStatus StatePublisher::device_status() const {
+  const device::LoopState state = latest();
+  DeviceStatus status;
+  status.header.stamp = Time::from_ns(rt::realtime_now_ns());
+  status.header.frame_id = device_.model().name;
+  status.device = device_.model().name;
+  status.driver = device_.model().driver;
+  // Before the loop's first tick the device is still connecting.
+  status.state = state.tick == 0 ? DeviceState::kConnecting : state.state;
+  status.state_text = state_text(state, device_.estop_note());
+  status.fault_code = state.state == DeviceState::kFault ? state.fault.code : 0;
+  status.fault_text = state.state == DeviceState::kFault ? state.fault.text.data() : "";
+  status.estop_engaged = state.estop;
+  status.loop = window_.summarize();
+  status.loop.rate_hz = device_.model().rate_hz;
+  status.loop.realtime = device_.thread_start().realtime;
+  status.loop.ticks = state.tick;
+  status.loop.overruns = state.overruns;
+  status.loop.rt_heap_allocations = state.rt_allocations;
+  status.commands = counters_.snapshot(device_.channel().dropped_stale.load(std::memory_order_relaxed));
+  for (auto& [key, value] : device_.driver().diagnostics()) status.driver_values.push_back({key, value});
+  const std::uint64_t lost = device_.channel().lost_events.load(std::memory_order_relaxed);
+  if (lost > 0) status.driver_values.push_back({"robotd.lost_loop_events", std::to_string(lost)});
+  return status;
+}
+
+void StatePublisher::publish_device_status() { (void)writers_.device_status->write(device_status()); }
+
+device::LoopState StatePublisher::latest() const {
+  const std::lock_guard lock(latest_mutex_);
+  return latest_;
+}
+
+}  // namespace robotd::dds

@@ -1,0 +1,69 @@
+// Per device, off the RT thread: publishes /joint_states (and /imu) at the device's state
+// rate and /device_status at the status rate, folds the loop's tick timings into the
+// statistics window, and acts on what the loop reports (sessions it ended, faults, black box).
+// It is the single reader of the loop's state mailbox and event rings.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "config/config.hpp"
+#include "device/black_box.hpp"
+#include "device/device.hpp"
+#include "device/loop_statistics.hpp"
+#include "service/command_counters.hpp"
+#include "service/session_service.hpp"
+#include "wire/topic_io.hpp"
+
+namespace robotd::dds {
+
+struct StateWriters {
+  const wire::TopicWriter<JointState>* joint_states = nullptr;
+  const wire::TopicWriter<Imu>* imu = nullptr;
+  const wire::TopicWriter<DeviceStatus>* device_status = nullptr;
+};
+
+class StatePublisher {
+ public:
+  StatePublisher(device::Device& device, std::size_t device_index, StateWriters writers,
+                 service::SessionService& sessions, const service::CommandCounterSet& counters,
+                 device::BlackBox& black_box, const config::DaemonConfig& daemon);
+  StatePublisher(const StatePublisher&) = delete;
+  StatePublisher& operator=(const StatePublisher&) = delete;
+  ~StatePublisher();
+
+  void start();
+  /// After the device has stopped: handles what the loop said last and publishes the final
+  /// (STOPPED) status, then ends the thread.
+  void finish();
+
+  /// The latest state the loop published (tick 0 = none yet).
+  device::LoopState latest() const;
+
+ private:
+  DeviceStatus device_status() const;
+  void run();
+  void drain_loop(bool publish_state);
+  void handle(const device::LoopEvent& event);
+  void publish_joint_state(const device::LoopState& state);
+  void publish_device_status();
+
+  device::Device& device_;
+  std::size_t device_index_;
+  StateWriters writers_;
+  service::SessionService& sessions_;
+  const service::CommandCounterSet& counters_;
+  device::BlackBox& black_box_;
+  const config::DaemonConfig& daemon_;
+
+  device::LoopStatisticsWindow window_;
+  JointState joint_state_;
+  mutable std::mutex latest_mutex_;
+  device::LoopState latest_{};
+  std::atomic<bool> stopping_{false};
+  std::thread thread_;
+};
+
+}  // namespace robotd::dds

@@ -1,0 +1,451 @@
+#include "device/control_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "rt/allocation_probe.hpp"
+#include "rt/monotonic_clock.hpp"
+
+namespace robotd::device {
+namespace {
+
+using control::JointMode;
+
+bool is_link_problem(driver::IoResult result) {
+  return result == driver::IoResult::kFault || result == driver::IoResult::kDisconnected;
+}
+
+JointMode mode_after(Behavior behavior) {
+  switch (behavior) {
+    case Behavior::kKeep: return JointMode::kTrack;
+    case Behavior::kDamping: return JointMode::kDamping;
+    case Behavior::kZeroTorque: return JointMode::kZeroTorque;
+  }
+  return JointMode::kTrack;
+}
+
+}  // namespace
+
+ControlLoop::ControlLoop(driver::Driver& driver, const control::DeviceModel& model, DeviceChannel& channel,
+                         const LoopSettings& settings)
+    : driver_(driver),
+      model_(model),
+      channel_(channel),
+      settings_(settings),
+      joint_count_(model.joint_count()),
+      period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))),
+      dt_s_(1.0 / settings.rate_hz) {
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    const auto& limits = model.limits[j];
+    motion_limits_[j] = control::MotionLimits{limits.position_min_rad, limits.position_max_rad,
+                                              limits.velocity_max_rad_s, limits.acceleration_max_rad_s2};
+  }
+  frame_.joint_count = joint_count_;
+}
+
+void ControlLoop::run() noexcept {
+  std::int64_t deadline = rt::monotonic_now_ns() + period_ns_;
+  std::int64_t previous_wake = 0;
+  while (!finished_) {
+    rt::sleep_until_ns(deadline);
+    const std::int64_t wake = rt::monotonic_now_ns();
+    tick(deadline, wake);
+    const std::int64_t end = rt::monotonic_now_ns();
+    last_execution_ns_ = end - wake;
+    channel_.timings.push(TickTiming{static_cast<std::int32_t>(wake - deadline),
+                                     static_cast<std::int32_t>(last_execution_ns_),
+                                     static_cast<std::int32_t>(previous_wake == 0 ? period_ns_ : wake - previous_wake)});
+    previous_wake = wake;
+    deadline += period_ns_;
+    if (end > deadline) {
+      // Missed at least one deadline: count them and resume on the next one in the future,
+      // rather than firing a burst of late ticks.
+      const std::int64_t missed = (end - deadline) / period_ns_ + 1;
+      overruns_ += static_cast<std::uint64_t>(missed);
+      deadline += missed * period_ns_;
+    }
+  }
+  channel_.stopped.store(true, std::memory_order_release);
+}
+
+void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
+  ++tick_count_;
+  newest_sent_ns_ = 0;
+  drain_control_events(now_ns);
+  handle_maintenance(now_ns);
+  if (!in_maintenance_) {
+    read_feedback(now_ns);
+    take_commands();
+    expire_sessions(now_ns);
+    update_estop(now_ns);
+    update_shutdown(now_ns);
+    if (!safe_state_ && !shutting_down_) apply_targets();
+    write_command(deadline_ns, now_ns);
+  }
+
+  if (tick_count_ == settings_.warmup_ticks) allocation_baseline_ = rt::thread_allocation_count();
+  if (allocation_baseline_ >= 0) rt_allocations_ = rt::thread_allocation_count() - allocation_baseline_;
+
+  const std::int64_t wake_latency = now_ns - deadline_ns;
+  publish(now_ns, wake_latency);
+  record_black_box(now_ns, wake_latency);
+  channel_.ticks.store(tick_count_, std::memory_order_release);
+}
+
+// --- sessions -------------------------------------------------------------------------------
+
+void ControlLoop::drain_control_events(std::int64_t now_ns) noexcept {
+  while (auto event = channel_.control_events.pop()) {
+    SlotRuntime& slot = slots_[event->slot];
+    if (event->type == ControlEvent::Type::kSessionStart) {
+      if (slot.active) end_session(event->slot, slot.timeout_behavior, LoopEvent::Type::kSessionReleased, now_ns, 0);
+      slot = SlotRuntime{true,          event->generation, event->mode,       event->behavior, event->timeout_ns,
+                         event->granted_ns, event->motors, event->default_kp, event->default_kd};
+      for (std::size_t j = 0; j < joint_count_; ++j) {
+        if (!event->motors.test(j)) continue;
+        owners_[j].slot = static_cast<std::int8_t>(event->slot);
+        owners_[j].generation = event->generation;
+        owners_[j].previous_target_time_ns = 0;
+      }
+    } else if (slot.active && slot.generation == event->generation) {
+      end_session(event->slot, event->behavior, LoopEvent::Type::kSessionReleased, now_ns, 0);
+    }
+  }
+}
+
+void ControlLoop::end_session(std::size_t slot_index, Behavior behavior, LoopEvent::Type why, std::int64_t now_ns,
+                              std::int64_t silence_ns) noexcept {
+  SlotRuntime& slot = slots_[slot_index];
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    if (!slot.motors.test(j) || owners_[j].slot != static_cast<std::int8_t>(slot_index)) continue;
+    owners_[j].slot = -1;
+    set_behavior(j, behavior, gains_for(j, &slot));
+  }
+  LoopEvent event;
+  event.type = why;
+  event.slot = static_cast<std::uint8_t>(slot_index);
+  event.generation = slot.generation;
+  event.behavior = behavior;
+  event.time_ns = now_ns;
+  event.silence_ns = silence_ns;
+  post(event);
+  slot.active = false;
+}
+
+void ControlLoop::set_behavior(std::size_t joint, Behavior behavior, control::Gains gains) noexcept {
+  if (safe_state_) {
+    // The safe behaviour stays in force; remember what to resume when it lifts.
+    saved_modes_[joint] = mode_after(behavior);
+    if (behavior == Behavior::kDamping) joints_[joint].kd = gains.kd;
+    return;
+  }
+  control::apply_behavior(joints_[joint], behavior, feedback_.joints[joint], gains);
+}
+
+void ControlLoop::expire_sessions(std::int64_t now_ns) noexcept {
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    SlotRuntime& slot = slots_[s];
+    if (!slot.active) continue;
+    std::int64_t last_activity = slot.granted_ns;
+    if (commands_ != nullptr && commands_->slots[s].generation == slot.generation) {
+      last_activity = std::max(last_activity, commands_->slots[s].last_command_ns);
+    }
+    const std::int64_t silence = now_ns - last_activity;
+    if (silence > slot.timeout_ns) {
+      end_session(s, slot.timeout_behavior, LoopEvent::Type::kSessionTimedOut, now_ns, silence);
+    }
+  }
+}
+
+control::Gains ControlLoop::gains_for(std::size_t joint, const SlotRuntime* slot) const noexcept {
+  control::Gains gains{model_.default_kp[joint], model_.default_kd[joint]};
+  if (slot != nullptr) {
+    if (!std::isnan(slot->default_kp[joint])) gains.kp = slot->default_kp[joint];
+    if (!std::isnan(slot->default_kd[joint])) gains.kd = slot->default_kd[joint];
+  }
+  return gains;
+}
+
+// --- commands -------------------------------------------------------------------------------
+
+void ControlLoop::take_commands() noexcept {
+  if (const CommandSnapshot* fresh = channel_.commands.take()) commands_ = fresh;
+}
+
+void ControlLoop::apply_targets() noexcept {
+  if (commands_ == nullptr) return;
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    const JointTarget& target = commands_->joints[j];
+    JointOwner& owner = owners_[j];
+    if (target.sequence == owner.applied_sequence) continue;
+    if (owner.slot < 0 || target.generation != owner.generation) {
+      // Written by a session that has ended (or whose start this loop has not seen yet;
+      // then a later tick applies it once the start event has arrived).
+      if (target.generation < owner.generation || owner.slot < 0) {
+        owner.applied_sequence = target.sequence;
+        channel_.dropped_stale.fetch_add(1, std::memory_order_relaxed);
+      }
+      continue;
+    }
+    owner.applied_sequence = target.sequence;
+    apply_target(j, target, slots_[static_cast<std::size_t>(owner.slot)]);
+    newest_sent_ns_ = std::max(newest_sent_ns_, target.sent_ns);
+  }
+}
+
+void ControlLoop::apply_target(std::size_t j, const JointTarget& target, const SlotRuntime& slot) noexcept {
+  control::JointControl& joint = joints_[j];
+  JointOwner& owner = owners_[j];
+  const control::JointTargetUpdate& u = target.update;
+  const control::Gains defaults = gains_for(j, &slot);
+
+  if (slot.mode == ControlMode::kTorque) {
+    joint.mode = JointMode::kTorque;
+    joint.torque_nm = (u.fields & control::kHasTorque) != 0 ? u.torque : 0.0;
+    return;
+  }
+
+  // POSITION or MIXED: a position target through the rate limiter.
+  const std::int64_t stamp = target.sent_ns != 0 ? target.sent_ns : target.received_ns;
+  const double position = u.position;
+  double velocity = 0;
+  std::int64_t interval = 0;
+  if ((u.fields & control::kHasVelocity) != 0) {
+    velocity = u.velocity;
+    interval = owner.previous_target_time_ns != 0 ? stamp - owner.previous_target_time_ns : 0;
+  } else if (owner.previous_target_time_ns != 0) {
+    // No velocity given: estimate the stream's velocity from the last two targets, so a
+    // low-rate stream is interpolated instead of stepped.
+    interval = stamp - owner.previous_target_time_ns;
+    constexpr std::int64_t kMaxStreamGapNs = 100'000'000;
+    if (interval > 0 && interval <= kMaxStreamGapNs) {
+      velocity = (position - owner.previous_target) / (static_cast<double>(interval) * 1e-9);
+    }
+  }
+  owner.previous_target = position;
+  owner.previous_target_time_ns = stamp;
+
+  control::begin_tracking(joint, feedback_.joints[j], motion_limits_[j].velocity_max);
+  joint.target_position = position;
+  joint.target_velocity =
+      control::clamp(velocity, -motion_limits_[j].velocity_max, motion_limits_[j].velocity_max);
+  joint.target_time_ns = target.received_ns;
+  joint.extrapolate_ns = std::clamp<std::int64_t>(interval, 0, 100'000'000);
+  joint.kp = (u.fields & control::kHasKp) != 0 ? u.kp : defaults.kp;
+  joint.kd = (u.fields & control::kHasKd) != 0 ? u.kd : defaults.kd;
+  if (slot.mode == ControlMode::kMixed) {
+    joint.track_kind = driver::JointCommandKind::kImpedance;
+    joint.torque_nm = u.torque;
+  } else {
+    joint.track_kind = driver::JointCommandKind::kPosition;
+    joint.torque_nm = 0;
+  }
+}
+
+// --- safety ---------------------------------------------------------------------------------
+
+void ControlLoop::update_estop(std::int64_t now_ns) noexcept {
+  const bool engaged = channel_.estop.load(std::memory_order_acquire);
+  if (engaged == estop_applied_) return;
+  estop_applied_ = engaged;
+  LoopEvent event;
+  event.time_ns = now_ns;
+  event.behavior = settings_.safe_behavior;
+  if (engaged) {
+    enter_safe_state();
+    event.type = LoopEvent::Type::kEstopApplied;
+  } else {
+    if (!fault_latched_) leave_safe_state();
+    event.type = LoopEvent::Type::kEstopCleared;
+  }
+  post(event);
+}
+
+void ControlLoop::enter_safe_state() noexcept {
+  if (safe_state_) return;
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    saved_modes_[j] = joints_[j].mode;
+    if (joints_[j].mode == JointMode::kIdle) continue;  // a joint nobody drives stays undriven
+    control::apply_behavior(joints_[j], settings_.safe_behavior, feedback_.joints[j], gains_for(j, nullptr));
+  }
+  safe_state_ = true;
+}
+
+void ControlLoop::leave_safe_state() noexcept {
+  if (!safe_state_) return;
+  safe_state_ = false;
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    control::JointControl& joint = joints_[j];
+    const control::Gains gains = gains_for(j, nullptr);
+    switch (saved_modes_[j]) {
+      // Never resume a stale target: whatever was tracking or applying torque now holds
+      // where it is measured.
+      case JointMode::kTrack:
+      case JointMode::kTorque: control::hold_measured(joint, feedback_.joints[j], gains); break;
+      case JointMode::kDamping: joint.mode = JointMode::kDamping; break;
+      case JointMode::kZeroTorque: joint.mode = JointMode::kZeroTorque; break;
+      case JointMode::kIdle: joint.mode = JointMode::kIdle; break;
+    }
+    owners_[j].previous_target_time_ns = 0;
+  }
+}
+
+void ControlLoop::latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns) noexcept {
+  if (fault_latched_) return;
+  fault_latched_ = true;
+  fault_ = fault;
+  enter_safe_state();
+  LoopEvent event;
+  event.type = LoopEvent::Type::kFaultLatched;
+  event.time_ns = now_ns;
+  event.fault = fault;
+  event.behavior = settings_.safe_behavior;
+  post(event);
+  if (!channel_.black_box_frozen.exchange(true, std::memory_order_acq_rel)) {
+    LoopEvent frozen;
+    frozen.type = LoopEvent::Type::kBlackBoxFrozen;
+    frozen.time_ns = now_ns;
+    post(frozen);
+  }
+}
+
+void ControlLoop::handle_maintenance(std::int64_t now_ns) noexcept {
+  const bool requested = channel_.maintenance_requested.load(std::memory_order_acquire);
+  if (requested && !in_maintenance_) {
+    // Stop touching the driver and hand it to the maintenance thread.
+    in_maintenance_ = true;
+    enter_safe_state();
+    channel_.maintenance_active.store(true, std::memory_order_release);
+  } else if (!requested && in_maintenance_) {
+    in_maintenance_ = false;
+    if (channel_.maintenance_clears_fault.exchange(false, std::memory_order_acq_rel)) {
+      fault_latched_ = false;
+      fault_.clear();
+    }
+    have_feedback_ = false;
+    reinit_pending_ = true;
+    last_feedback_ns_ = now_ns;
+    channel_.maintenance_active.store(false, std::memory_order_release);
+  }
+}
+
+void ControlLoop::read_feedback(std::int64_t now_ns) noexcept {
+  const driver::IoResult result = driver_.read(read_buffer_, io_fault_);
+  if (result == driver::IoResult::kOk) {
+    feedback_ = read_buffer_;
+    feedback_.joint_count = joint_count_;
+    have_feedback_ = true;
+    last_feedback_ns_ = now_ns;
+    if (reinit_pending_) {
+      reinit_pending_ = false;
+      if (!fault_latched_ && !estop_applied_) leave_safe_state();
+    }
+  } else if (is_link_problem(result)) {
+    if (result == driver::IoResult::kDisconnected && io_fault_.code == 0) io_fault_.code = kFaultLinkLost;
+    latch_fault(io_fault_, now_ns);
+  }
+  if (last_feedback_ns_ == 0) last_feedback_ns_ = now_ns;
+  if (!fault_latched_ && now_ns - last_feedback_ns_ > settings_.feedback_timeout_ns) {
+    driver::FaultInfo stale;
+    char text[96];
+    std::snprintf(text, sizeof(text), "no feedback from the driver for %lld ms",
+                  static_cast<long long>((now_ns - last_feedback_ns_) / rt::kNsPerMs));
+    stale.set(kFaultNoFeedback, text);
+    latch_fault(stale, now_ns);
+  }
+}
+
+void ControlLoop::update_shutdown(std::int64_t now_ns) noexcept {
+  if (!shutting_down_) {
+    if (!channel_.shutdown_requested.load(std::memory_order_acquire)) return;
+    shutting_down_ = true;
+    shutdown_started_ns_ = now_ns;
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      if (slots_[s].active) {
+        end_session(s, settings_.shutdown_behavior, LoopEvent::Type::kSessionEndedByShutdown, now_ns, 0);
+      }
+    }
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+      if (joints_[j].mode != JointMode::kIdle) set_behavior(j, settings_.shutdown_behavior, gains_for(j, nullptr));
+    }
+  }
+  if (now_ns - shutdown_started_ns_ >= settings_.shutdown_duration_ns) finished_ = true;
+}
+
+// --- output ---------------------------------------------------------------------------------
+
+void ControlLoop::write_command(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
+  frame_.tick = tick_count_;
+  frame_.tick_deadline_ns = deadline_ns;
+  frame_.estop = estop_applied_;
+  frame_.newest_command_sent_ns = newest_sent_ns_;
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    frame_.joints[j] = control::joint_output(joints_[j], feedback_.joints[j], motion_limits_[j], dt_s_, now_ns);
+    frame_.joints[j].owned = owners_[j].slot >= 0;
+  }
+  if (!have_feedback_) return;  // nothing sensible to command before the first feedback
+  const driver::IoResult result = driver_.write(frame_, io_fault_);
+  if (is_link_problem(result)) {
+    if (result == driver::IoResult::kDisconnected && io_fault_.code == 0) io_fault_.code = kFaultLinkLost;
+    latch_fault(io_fault_, now_ns);
+  }
+}
+
+DeviceState ControlLoop::current_state() const noexcept {
+  if (finished_) return DeviceState::kStopped;
+  if (in_maintenance_ || reinit_pending_) return DeviceState::kMaintenance;
+  if (fault_latched_) return DeviceState::kFault;
+  if (estop_applied_) return DeviceState::kEstop;
+  if (!have_feedback_) return DeviceState::kConnecting;
+  return DeviceState::kRunning;
+}
+
+void ControlLoop::publish(std::int64_t now_ns, std::int64_t /*wake_latency_ns*/) noexcept {
+  const DeviceState state = current_state();
+  channel_.device_state.store(state, std::memory_order_release);
+  LoopState& out = channel_.state.write_buffer();
+  out.tick = tick_count_;
+  out.time_ns = now_ns;
+  out.state = state;
+  out.estop = estop_applied_;
+  out.fault = fault_;
+  out.feedback = feedback_;
+  out.overruns = overruns_;
+  out.rt_allocations = rt_allocations_;
+  out.realtime = settings_.realtime;
+  channel_.state.publish();
+}
+
+void ControlLoop::record_black_box(std::int64_t now_ns, std::int64_t wake_latency_ns) noexcept {
+  if (channel_.black_box_freeze_requested.load(std::memory_order_acquire) &&
+      !channel_.black_box_frozen.exchange(true, std::memory_order_acq_rel)) {
+    LoopEvent frozen;
+    frozen.type = LoopEvent::Type::kBlackBoxFrozen;
+    frozen.time_ns = now_ns;
+    post(frozen);
+  }
+  if (channel_.black_box_frozen.load(std::memory_order_acquire)) return;
+  const std::uint64_t index = channel_.black_box_next.load(std::memory_order_relaxed);
+  BlackBoxRecord& record = channel_.black_box[index % kBlackBoxTicks];
+  record.tick = tick_count_;
+  record.time_ns = now_ns;
+  record.wake_latency_ns = static_cast<std::int32_t>(wake_latency_ns);
+  record.execution_ns = static_cast<std::int32_t>(last_execution_ns_);
+  record.state = current_state();
+  record.joint_count = static_cast<std::uint8_t>(joint_count_);
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    record.joints[j] = BlackBoxJoint{static_cast<float>(feedback_.joints[j].position_rad),
+                                     static_cast<float>(feedback_.joints[j].velocity_rad_s),
+                                     static_cast<float>(frame_.joints[j].position_rad),
+                                     static_cast<float>(frame_.joints[j].torque_nm),
+                                     static_cast<std::uint8_t>(frame_.joints[j].kind)};
+  }
+  channel_.black_box_next.store(index + 1, std::memory_order_release);
+}
+
+void ControlLoop::post(const LoopEvent& event) noexcept {
+  if (!channel_.loop_events.push(event)) channel_.lost_events.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace robotd::device

@@ -1,0 +1,69 @@
+// One configured device: its driver plugin, what robotd knows about it, the channel to its
+// RT loop, and the loop's thread. Lifecycle (non-RT): configure → start → [maintenance]* →
+// stop.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <thread>
+
+#include "config/config.hpp"
+#include "control/device_model.hpp"
+#include "device/control_loop.hpp"
+#include "device/device_channel.hpp"
+#include "plugin/plugin_loader.hpp"
+#include "robotd/result.hpp"
+#include "rt/realtime_thread.hpp"
+
+namespace robotd::device {
+
+class Device {
+ public:
+  Device(config::DeviceConfig config, std::unique_ptr<plugin::LoadedDriver> plugin);
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+  ~Device();
+
+  /// Configures the driver with the device's params and builds the model (limits narrowed by
+  /// the config's joint_limits; widening a driver limit is refused).
+  Result<void> configure();
+  /// Connects the driver and starts the RT loop.
+  Result<void> start();
+  /// Tells the loop to begin its safe stop (returns at once).
+  void request_stop();
+  /// Brings the device to its safe stop, ends the loop and disconnects the driver.
+  void stop();
+
+  /// Pauses the loop's driver I/O, runs `work` on the calling thread, resumes. If `work`
+  /// succeeds and `clears_fault`, a latched fault is cleared. Joints then hold where measured.
+  Result<void> run_maintenance(const std::function<Result<void>(driver::Driver&)>& work, bool clears_fault,
+                               std::chrono::milliseconds timeout);
+
+  const config::DeviceConfig& config() const { return config_; }
+  const control::DeviceModel& model() const { return model_; }
+  DeviceChannel& channel() { return *channel_; }
+  const DeviceChannel& channel() const { return *channel_; }
+  driver::Driver& driver() { return plugin_->driver(); }
+  const rt::ThreadStart& thread_start() const { return thread_start_; }
+  bool running() const { return thread_.joinable(); }
+
+  /// Who engaged the e-stop and why, for DeviceStatus.state_text.
+  void set_estop_note(std::string note);
+  std::string estop_note() const;
+
+ private:
+  config::DeviceConfig config_;
+  std::unique_ptr<plugin::LoadedDriver> plugin_;
+  control::DeviceModel model_;
+  std::unique_ptr<DeviceChannel> channel_;
+  std::unique_ptr<ControlLoop> loop_;
+  std::thread thread_;
+  rt::ThreadStart thread_start_;
+  std::mutex maintenance_mutex_;
+  mutable std::mutex note_mutex_;
+  std::string estop_note_;
+  bool connected_ = false;
+};
+
+}  // namespace robotd::device

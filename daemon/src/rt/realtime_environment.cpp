@@ -1,0 +1,81 @@
+#include "rt/realtime_environment.hpp"
+
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace robotd::rt {
+namespace {
+
+std::string read_first_line(const char* path) {
+  std::ifstream file(path);
+  std::string line;
+  if (file) std::getline(file, line);
+  return line;
+}
+
+std::string limit_text(int resource) {
+  rlimit limit{};
+  if (getrlimit(resource, &limit) != 0) return "unknown";
+  if (limit.rlim_cur == RLIM_INFINITY) return "unlimited";
+  return std::to_string(limit.rlim_cur);
+}
+
+bool fifo_allowed() {
+  if (geteuid() == 0) return true;
+  rlimit limit{};
+  return getrlimit(RLIMIT_RTPRIO, &limit) == 0 && limit.rlim_cur > 0;
+}
+
+}  // namespace
+
+EnvironmentReport inspect_environment() {
+  EnvironmentReport report;
+  utsname name{};
+  if (uname(&name) == 0) report.kernel = std::string(name.release) + " " + name.version;
+  report.preempt_rt_kernel = read_first_line("/sys/kernel/realtime") == "1" ||
+                             report.kernel.find("PREEMPT_RT") != std::string::npos;
+  report.rtprio_limit = limit_text(RLIMIT_RTPRIO);
+  report.memlock_limit = limit_text(RLIMIT_MEMLOCK);
+  report.can_use_fifo = fifo_allowed();
+  report.cpu_governor = read_first_line("/sys/devices/system/cpu/cpu0/cpufreq/scaling_governor");
+  if (report.cpu_governor.empty()) report.cpu_governor = "unknown (no cpufreq)";
+  report.cpu_count = static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
+
+  if (!report.preempt_rt_kernel) {
+    report.warnings.emplace_back("kernel is not PREEMPT_RT: expect wake-up latencies of tens to hundreds of µs");
+  }
+  if (!report.can_use_fifo) {
+    report.warnings.emplace_back("SCHED_FIFO not permitted (RLIMIT_RTPRIO " + report.rtprio_limit +
+                                 ", not root): loops will run SCHED_OTHER");
+  }
+  if (report.cpu_governor != "performance" && report.cpu_governor.rfind("unknown", 0) != 0) {
+    report.warnings.emplace_back("CPU governor is '" + report.cpu_governor +
+                                 "': frequency changes add latency; 'performance' is recommended");
+  }
+  return report;
+}
+
+std::string describe(const EnvironmentReport& report) {
+  std::ostringstream out;
+  out << "kernel " << report.kernel << (report.preempt_rt_kernel ? " (PREEMPT_RT)" : " (not PREEMPT_RT)")
+      << "; RLIMIT_RTPRIO " << report.rtprio_limit << "; RLIMIT_MEMLOCK " << report.memlock_limit
+      << "; SCHED_FIFO " << (report.can_use_fifo ? "permitted" : "not permitted") << "; CPU governor "
+      << report.cpu_governor << "; " << report.cpu_count << " CPUs online";
+  return out.str();
+}
+
+std::string lock_memory() {
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) return "";
+  return std::string("mlockall failed (") + std::strerror(errno) +
+         "): pages may be swapped out under memory pressure; raise RLIMIT_MEMLOCK (LimitMEMLOCK=infinity) "
+         "or grant CAP_IPC_LOCK";
+}
+
+}  // namespace robotd::rt

@@ -1,0 +1,27 @@
+// The startup self-check: what this machine and process allow for real-time work, so a
+// timing problem is traced to its cause (kernel, limits, governor) instead of guessed at.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace robotd::rt {
+
+struct EnvironmentReport {
+  bool preempt_rt_kernel = false;
+  std::string kernel;
+  std::string rtprio_limit;   // RLIMIT_RTPRIO, "unlimited" or a number
+  std::string memlock_limit;  // RLIMIT_MEMLOCK
+  bool can_use_fifo = false;  // root / CAP_SYS_NICE or rtprio > 0
+  std::string cpu_governor;   // cpu0's scaling governor, "unknown" without cpufreq
+  int cpu_count = 0;
+  std::vector<std::string> warnings;  // things that will hurt timing, in plain words
+};
+
+EnvironmentReport inspect_environment();
+std::string describe(const EnvironmentReport& report);
+
+/// mlockall(MCL_CURRENT | MCL_FUTURE). Returns "" on success, else why it failed.
+std::string lock_memory();
+
+}  // namespace robotd::rt

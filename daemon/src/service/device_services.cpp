@@ -1,0 +1,224 @@
+#include "service/device_services.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "rt/monotonic_clock.hpp"
+
+namespace robotd::service {
+namespace {
+
+constexpr double kZeroTolerance_rad = 0.1;  // PI Plus: zeroing succeeded when every motor reads within 0.1 rad
+
+DeviceCallResponse call_failed(std::string message) { return DeviceCallResponse{false, std::move(message), ""}; }
+
+}  // namespace
+
+DeviceServices::DeviceServices(std::vector<device::Device*> devices, std::vector<device::BlackBox*> black_boxes,
+                               SessionService& sessions, std::function<device::LoopState(std::size_t)> latest_state)
+    : devices_(std::move(devices)),
+      black_boxes_(std::move(black_boxes)),
+      sessions_(sessions),
+      latest_state_(std::move(latest_state)) {
+  for (std::size_t i = 0; i < devices_.size(); ++i) call_mutexes_.push_back(std::make_unique<std::mutex>());
+}
+
+std::vector<std::string> DeviceServices::daemon_ops() {
+  return {"recover: clear a latched fault (calls the driver's recover); joints then hold where they are. Args: {}",
+          "blackbox: the recent ticks (state, command, timing) kept by the loop. Args: {\"fresh\": bool} — "
+          "false (default) returns the capture made at the last fault, true captures now"};
+}
+
+ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*request*/) const {
+  ListDevicesResponse response;
+  for (const device::Device* device : devices_) {
+    const control::DeviceModel& model = device->model();
+    DeviceInfo info;
+    info.name = model.name;
+    info.driver = model.driver;
+    info.driver_version = model.driver_version;
+    info.model = model.model;
+    info.rate_hz = model.rate_hz;
+    info.native_rate_hz = model.native_rate_hz;
+    info.joint_names = model.joint_names;
+    for (const auto& limits : model.limits) {
+      info.position_min.push_back(limits.position_min_rad);
+      info.position_max.push_back(limits.position_max_rad);
+      info.velocity_max.push_back(limits.velocity_max_rad_s);
+      info.acceleration_max.push_back(limits.acceleration_max_rad_s2);
+      info.effort_max.push_back(limits.effort_max_nm);
+    }
+    for (const ControlMode mode : model.control_modes()) info.control_modes.emplace_back(to_string(mode));
+    for (const Behavior behavior : {Behavior::kKeep, Behavior::kDamping, Behavior::kZeroTorque}) {
+      info.behavior_map.push_back(static_cast<std::int32_t>(control::applied_behavior(behavior, model.behaviors)));
+    }
+    for (const auto& op : model.ops) info.ops.push_back(op.name + ": " + op.help);
+    for (const auto& op : daemon_ops()) info.ops.push_back(op);
+    info.state = device->channel().device_state.load(std::memory_order_acquire);
+    response.devices.push_back(std::move(info));
+  }
+  return response;
+}
+
+EstopResponse DeviceServices::estop(const EstopRequest& request) {
+  std::vector<device::Device*> targets;
+  if (request.device.empty()) {
+    targets = devices_;
+  } else {
+    auto index = sessions_.resolve_device(request.device);
+    if (!index) return EstopResponse{false, index.error().message};
+    targets.push_back(devices_[index.value()]);
+  }
+  const std::string who = request.node_name.empty() ? "(unnamed)" : request.node_name;
+  std::string names;
+  for (device::Device* device : targets) {
+    names += (names.empty() ? "'" : ", '") + device->model().name + "'";
+    if (request.engage) {
+      device->set_estop_note("engaged by '" + who + "'" + (request.reason.empty() ? "" : ": " + request.reason));
+      device->channel().estop.store(true, std::memory_order_release);
+    } else {
+      device->channel().estop.store(false, std::memory_order_release);
+      device->set_estop_note("");
+    }
+  }
+  const std::string message =
+      std::string(request.engage ? "e-stop engaged on " : "e-stop reset on ") + names + " by '" + who + "'";
+  if (request.engage) {
+    spdlog::warn("{}{}", message, request.reason.empty() ? "" : " (" + request.reason + ")");
+  } else {
+    spdlog::info("{}", message);
+  }
+  return EstopResponse{true, message};
+}
+
+bool DeviceServices::wait_for_state(std::size_t device, std::uint64_t after_tick, std::chrono::milliseconds timeout,
+                                    device::LoopState& out) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    out = latest_state_(device);
+    if (out.tick > after_tick && out.state == DeviceState::kRunning) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return false;
+}
+
+ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
+  auto index = sessions_.resolve_device(request.device);
+  if (!index) return ResetZeroResponse{false, index.error().message};
+  device::Device& device = *devices_[index.value()];
+  const control::DeviceModel& model = device.model();
+  if (sessions_.any_active(index.value())) {
+    std::string holders;
+    for (const auto& session : sessions_.status(rt::monotonic_now_ns()).sessions) {
+      if (session.device == model.name) {
+        holders += (holders.empty() ? "" : ", ") + std::string("node '") + session.node_name + "' (session " +
+                   session.uuid + ")";
+      }
+    }
+    return ResetZeroResponse{false, "reset_zero is refused while a session is active on '" + model.name +
+                                        "': held by " + holders + "; release it first"};
+  }
+  const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
+  if (state != DeviceState::kRunning) {
+    return ResetZeroResponse{false, "device '" + model.name + "' is " + std::string(to_string(state)) +
+                                        "; reset_zero needs it RUNNING"};
+  }
+  const std::int32_t timeout_ms = request.timeout_ms == 0 ? 10'000 : request.timeout_ms;
+  if (timeout_ms < 100 || timeout_ms > 60'000) {
+    return ResetZeroResponse{false, "timeout_ms " + std::to_string(request.timeout_ms) + " is outside 100..60000"};
+  }
+  std::vector<int> joints;
+  for (const auto id : request.motor_ids) {
+    if (id < 0 || static_cast<std::size_t>(id) >= model.joint_count()) {
+      return ResetZeroResponse{false, "motor id " + std::to_string(id) + " does not exist on '" + model.name + "'"};
+    }
+    joints.push_back(id);
+  }
+  if (joints.empty()) {
+    for (std::size_t j = 0; j < model.joint_count(); ++j) joints.push_back(static_cast<int>(j));
+  }
+
+  const auto timeout = std::chrono::milliseconds(timeout_ms);
+  spdlog::info("device '{}': reset_zero of {} motor(s)", model.name, joints.size());
+  auto zeroed = device.run_maintenance([&](driver::Driver& driver) { return driver.reset_zero(joints); }, false,
+                                       timeout);
+  if (!zeroed) return ResetZeroResponse{false, "reset_zero on '" + model.name + "' failed: " + zeroed.error().message};
+
+  device::LoopState after;
+  if (!wait_for_state(index.value(), latest_state_(index.value()).tick, timeout, after)) {
+    return ResetZeroResponse{false, "device '" + model.name + "' gave no feedback within " +
+                                        std::to_string(timeout_ms) + " ms after zeroing"};
+  }
+  std::ostringstream off;
+  for (const int joint : joints) {
+    const double position = after.feedback.joints[static_cast<std::size_t>(joint)].position_rad;
+    if (std::fabs(position) > kZeroTolerance_rad) off << " " << model.joint_names[static_cast<std::size_t>(joint)] << "=" << position;
+  }
+  if (!off.str().empty()) {
+    return ResetZeroResponse{false, "zeroing did not take: motors not within " + std::to_string(kZeroTolerance_rad) +
+                                        " rad of zero:" + off.str()};
+  }
+  return ResetZeroResponse{true, "zeroed " + std::to_string(joints.size()) + " motor(s) of '" + model.name +
+                                     "'; every one reads within 0.1 rad of zero"};
+}
+
+DeviceCallResponse DeviceServices::device_call(const DeviceCallRequest& request) {
+  auto index = sessions_.resolve_device(request.device);
+  if (!index) return call_failed(index.error().message);
+  nlohmann::json args = nlohmann::json::object();
+  if (!request.args_json.empty()) {
+    try {
+      args = nlohmann::json::parse(request.args_json);
+    } catch (const nlohmann::json::parse_error& e) {
+      return call_failed("args_json is not valid JSON (" + std::string(e.what()) + "); expected an object");
+    }
+    if (!args.is_object()) return call_failed("args_json must be a JSON object, got " + args.dump());
+  }
+  for (const auto& op : daemon_ops()) {
+    if (op.substr(0, op.find(':')) == request.op) return daemon_op(index.value(), request.op, args);
+  }
+  device::Device& device = *devices_[index.value()];
+  const std::lock_guard lock(*call_mutexes_[index.value()]);
+  auto result = device.driver().call(request.op, args);
+  if (!result) return call_failed("'" + device.model().name + "' " + request.op + ": " + result.error().message);
+  return DeviceCallResponse{true, "ok", result.value().dump()};
+}
+
+DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::string& op, const nlohmann::json& args) {
+  device::Device& device = *devices_[index];
+  const std::string& name = device.model().name;
+  if (op == "recover") {
+    if (!args.empty()) return call_failed("recover takes no arguments, got " + args.dump());
+    spdlog::info("device '{}': recover requested", name);
+    auto recovered = device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true,
+                                            std::chrono::seconds(10));
+    if (!recovered) return call_failed("recover of '" + name + "' failed: " + recovered.error().message);
+    device::LoopState state;
+    if (!wait_for_state(index, latest_state_(index).tick, std::chrono::seconds(2), state)) {
+      return call_failed("'" + name + "' recovered but is not RUNNING: " + std::string(to_string(state.state)) + " " +
+                         state.fault.text.data());
+    }
+    spdlog::info("device '{}': recovered; joints hold where they are", name);
+    return DeviceCallResponse{true, "recovered; joints hold where they are", R"({"state":"RUNNING"})"};
+  }
+  // blackbox
+  for (const auto& [key, value] : args.items()) {
+    if (key != "fresh" || !value.is_boolean()) {
+      return call_failed("blackbox takes {\"fresh\": true|false}, got " + args.dump());
+    }
+  }
+  device::BlackBox& box = *black_boxes_[index];
+  if (args.value("fresh", false)) {
+    auto capture = box.capture_now(std::chrono::seconds(2));
+    if (!capture) return call_failed(capture.error().message);
+    return DeviceCallResponse{true, "captured now", capture.value().dump()};
+  }
+  const nlohmann::json latest = box.latest();
+  if (latest.is_null()) return call_failed("no black box captured on '" + name + "' yet (no fault); use {\"fresh\": true}");
+  return DeviceCallResponse{true, "last capture", latest.dump()};
+}
+
+}  // namespace robotd::service

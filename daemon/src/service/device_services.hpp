@@ -1,0 +1,45 @@
+// The device-level services: list_devices, estop (engage / reset), reset_zero and
+// device_call. device_call reaches the driver's vendor ops plus robotd's own per-device ops:
+//   recover   {}                 clear a latched fault (driver.recover), joints then hold
+//   blackbox  {"fresh": false}   the last black-box capture, or a new one with fresh=true
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "device/black_box.hpp"
+#include "device/device.hpp"
+#include "robotd/messages.hpp"
+#include "service/session_service.hpp"
+
+namespace robotd::service {
+
+class DeviceServices {
+ public:
+  /// `latest_state(i)` returns device i's newest loop state (from its publisher).
+  DeviceServices(std::vector<device::Device*> devices, std::vector<device::BlackBox*> black_boxes,
+                 SessionService& sessions, std::function<device::LoopState(std::size_t)> latest_state);
+
+  ListDevicesResponse list_devices(const ListDevicesRequest& request) const;
+  EstopResponse estop(const EstopRequest& request);
+  ResetZeroResponse reset_zero(const ResetZeroRequest& request);
+  DeviceCallResponse device_call(const DeviceCallRequest& request);
+
+  /// robotd's own device_call ops, as listed in DeviceInfo.ops.
+  static std::vector<std::string> daemon_ops();
+
+ private:
+  DeviceCallResponse daemon_op(std::size_t device, const std::string& op, const nlohmann::json& args);
+  bool wait_for_state(std::size_t device, std::uint64_t after_tick, std::chrono::milliseconds timeout,
+                      device::LoopState& out) const;
+
+  std::vector<device::Device*> devices_;
+  std::vector<device::BlackBox*> black_boxes_;
+  SessionService& sessions_;
+  std::function<device::LoopState(std::size_t)> latest_state_;
+  std::vector<std::unique_ptr<std::mutex>> call_mutexes_;  // one vendor op at a time per driver
+};
+
+}  // namespace robotd::service

@@ -1,0 +1,216 @@
+#include "service/session_service.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "rt/monotonic_clock.hpp"
+#include "session/session_uuid.hpp"
+
+namespace robotd::service {
+namespace {
+
+std::vector<const control::DeviceModel*> models_of(const std::vector<device::Device*>& devices) {
+  std::vector<const control::DeviceModel*> models;
+  models.reserve(devices.size());
+  for (const auto* device : devices) models.push_back(&device->model());
+  return models;
+}
+
+device::ControlEvent start_event(const session::SessionRecord& record) {
+  device::ControlEvent event;
+  event.type = device::ControlEvent::Type::kSessionStart;
+  event.slot = record.slot;
+  event.generation = record.generation;
+  event.mode = record.mode;
+  event.behavior = record.applied_behavior;
+  event.timeout_ns = static_cast<std::int64_t>(record.timeout_ms) * rt::kNsPerMs;
+  event.granted_ns = record.granted_ns;
+  event.motors = record.motors;
+  event.default_kp.fill(device::kNoGain);
+  event.default_kd.fill(device::kNoGain);
+  for (std::size_t i = 0; i < record.motor_ids.size(); ++i) {
+    const auto joint = static_cast<std::size_t>(record.motor_ids[i]);
+    if (!record.default_kp.empty()) event.default_kp[joint] = record.default_kp[i];
+    if (!record.default_kd.empty()) event.default_kd[joint] = record.default_kd[i];
+  }
+  return event;
+}
+
+std::string state_refusal(DeviceState state, const std::string& device) {
+  switch (state) {
+    case DeviceState::kFault:
+      return "device '" + device + "' is in FAULT: recover it first (robotctl call " + device + " recover)";
+    case DeviceState::kEstop: return "device '" + device + "' is e-stopped: reset the e-stop first";
+    case DeviceState::kMaintenance: return "device '" + device + "' is in maintenance (recover or reset_zero)";
+    case DeviceState::kConnecting: return "device '" + device + "' has not delivered feedback yet";
+    case DeviceState::kStopped: return "device '" + device + "' is stopping";
+    case DeviceState::kRunning: return "";
+  }
+  return "";
+}
+
+}  // namespace
+
+SessionService::SessionService(std::vector<device::Device*> devices, session::SessionLimits limits,
+                               std::function<void()> on_change)
+    : devices_(std::move(devices)), table_(models_of(devices_), limits), on_change_(std::move(on_change)) {}
+
+RequestControlResponse SessionService::request_control(const RequestControlRequest& request) {
+  RequestControlResponse response;
+  {
+    const std::lock_guard lock(mutex_);
+    auto device_index = table_.resolve_device(request.device);
+    if (!device_index) {
+      response.message = device_index.error().message;
+      return response;
+    }
+    device::Device& device = *devices_[device_index.value()];
+    const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
+    if (const std::string refusal = state_refusal(state, device.model().name); !refusal.empty()) {
+      response.message = refusal;
+      return response;
+    }
+    auto granted = table_.grant(request, session::random_session_uuid(), rt::monotonic_now_ns(), rt::realtime_now_ns());
+    if (!granted) {
+      response.message = granted.error().message;
+      return response;
+    }
+    const session::SessionRecord& record = granted.value();
+    if (!device.channel().post(start_event(record))) {
+      (void)table_.release(record.uuid);
+      response.message = "device '" + device.model().name + "' is busy (its loop has not taken the last requests); retry";
+      return response;
+    }
+    response.success = true;
+    response.uuid = record.uuid;
+    response.motor_ids = record.motor_ids;
+    response.applied_behavior = record.applied_behavior;
+    response.message = "granted " + std::to_string(record.motor_ids.size()) + " motor(s) of '" + record.device +
+                       "' in " + std::string(to_string(record.mode)) + " mode; on timeout (" +
+                       std::to_string(record.timeout_ms) + " ms) " + std::string(to_string(record.applied_behavior));
+    if (record.applied_behavior != record.requested_behavior) {
+      response.message += " (" + std::string(to_string(record.requested_behavior)) + " is not supported by this device)";
+    }
+    spdlog::info("session {} granted to node '{}': {}", record.uuid, record.node_name, response.message);
+  }
+  on_change_();
+  return response;
+}
+
+ReleaseControlResponse SessionService::release_control(const ReleaseControlRequest& request) {
+  ReleaseControlResponse response;
+  if (!is_valid(request.release_mode)) {
+    response.message = "release_mode " + std::to_string(static_cast<int>(request.release_mode)) +
+                       " is not one of KEEP_MODE=0, DAMPING_MODE=1, ZERO_TORQUE_MODE=2";
+    return response;
+  }
+  {
+    const std::lock_guard lock(mutex_);
+    auto released = table_.release(request.uuid);
+    if (!released) {
+      response.message = released.error().message;
+      return response;
+    }
+    const session::SessionRecord& record = released.value();
+    device::Device& device = *devices_[record.device_index];
+    const Behavior applied = control::applied_behavior(request.release_mode, device.model().behaviors);
+    device::ControlEvent event;
+    event.type = device::ControlEvent::Type::kSessionRelease;
+    event.slot = record.slot;
+    event.generation = record.generation;
+    event.behavior = applied;
+    if (!device.channel().post(event)) {
+      // The loop is not draining its events; its timeout still ends the session.
+      spdlog::error("device '{}': release of session {} could not be queued; it will time out instead",
+                    record.device, record.uuid);
+    }
+    response.success = true;
+    response.applied_behavior = applied;
+    response.message = "released " + std::to_string(record.motor_ids.size()) + " motor(s) of '" + record.device +
+                       "' with " + std::string(to_string(applied));
+    spdlog::info("session {} of node '{}' released by '{}': {}", record.uuid, record.node_name, request.node_name,
+                 response.message);
+  }
+  on_change_();
+  return response;
+}
+
+GetAvailableMotorsResponse SessionService::available_motors(const GetAvailableMotorsRequest& request) {
+  GetAvailableMotorsResponse response;
+  const std::lock_guard lock(mutex_);
+  auto device_index = table_.resolve_device(request.device);
+  if (!device_index) {
+    response.message = device_index.error().message;
+    return response;
+  }
+  const control::DeviceModel& model = table_.device(device_index.value());
+  response.motor_ids = table_.idle_motors(device_index.value());
+  for (const auto id : response.motor_ids) response.motor_names.push_back(model.joint_names[static_cast<std::size_t>(id)]);
+  response.success = true;
+  response.message = std::to_string(response.motor_ids.size()) + " of " + std::to_string(model.joint_count()) +
+                     " motors of '" + model.name + "' are idle";
+  return response;
+}
+
+std::optional<SessionService::Authorization> SessionService::authorize(std::string_view uuid) {
+  const std::lock_guard lock(mutex_);
+  const session::SessionRecord* record = table_.find(uuid);
+  if (record == nullptr) return std::nullopt;
+  return Authorization{record->device_index, record->slot, record->generation, record->mode, record->motors};
+}
+
+void SessionService::note_command(std::string_view uuid, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  if (session::SessionRecord* record = table_.find(uuid)) {
+    record->last_command_ns = now_ns;
+    ++record->commands_accepted;
+  }
+}
+
+std::optional<session::SessionRecord> SessionService::session_ended(std::size_t device, std::uint8_t slot,
+                                                                    std::uint32_t generation) {
+  std::optional<session::SessionRecord> ended;
+  {
+    const std::lock_guard lock(mutex_);
+    ended = table_.end(device, slot, generation);
+  }
+  if (ended) on_change_();
+  return ended;
+}
+
+bool SessionService::any_active(std::size_t device) const {
+  const std::lock_guard lock(mutex_);
+  return table_.any_active(device);
+}
+
+Result<std::size_t> SessionService::resolve_device(std::string_view name) const {
+  const std::lock_guard lock(mutex_);
+  return table_.resolve_device(name);
+}
+
+SessionStatus SessionService::status(std::int64_t now_ns) const {
+  SessionStatus status;
+  status.header.stamp = Time::from_ns(rt::realtime_now_ns());
+  const std::lock_guard lock(mutex_);
+  for (const auto& record : table_.sessions()) {
+    status.active_uuids.push_back(record.uuid);
+    status.node_names.push_back(record.node_name);
+    status.motor_counts.push_back(static_cast<std::int32_t>(record.motor_ids.size()));
+    SessionInfo info;
+    info.uuid = record.uuid;
+    info.node_name = record.node_name;
+    info.device = record.device;
+    info.motor_ids = record.motor_ids;
+    info.control_mode = record.mode;
+    info.default_behavior = record.requested_behavior;
+    info.applied_behavior = record.applied_behavior;
+    info.timeout_ms = record.timeout_ms;
+    info.time_left_ms = static_cast<std::int32_t>(record.time_left_ms(now_ns));
+    info.granted_at = Time::from_ns(record.granted_wall_ns);
+    info.commands_accepted = record.commands_accepted;
+    status.sessions.push_back(std::move(info));
+  }
+  status.state = status.sessions.empty() ? "idle" : "active";
+  return status;
+}
+
+}  // namespace robotd::service

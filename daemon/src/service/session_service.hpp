@@ -1,0 +1,56 @@
+// The session side of robotd: request_control, release_control, get_available_motors, the
+// ownership check for every command, and sessions the loop ended. Serialises access to the
+// session table and tells each device's loop about grants and releases. Never called on an
+// RT thread.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "control/command_validator.hpp"
+#include "device/device.hpp"
+#include "robotd/messages.hpp"
+#include "session/session_table.hpp"
+
+namespace robotd::service {
+
+class SessionService {
+ public:
+  /// `on_change` is called (outside any lock) whenever the set of sessions changes.
+  SessionService(std::vector<device::Device*> devices, session::SessionLimits limits, std::function<void()> on_change);
+
+  RequestControlResponse request_control(const RequestControlRequest& request);
+  ReleaseControlResponse release_control(const ReleaseControlRequest& request);
+  GetAvailableMotorsResponse available_motors(const GetAvailableMotorsRequest& request);
+
+  struct Authorization {
+    std::size_t device = 0;
+    std::uint8_t slot = 0;
+    std::uint32_t generation = 0;
+    ControlMode mode = ControlMode::kPosition;
+    control::MotorSet motors;
+  };
+  /// The session a command's uuid names, if it is active.
+  std::optional<Authorization> authorize(std::string_view uuid);
+  /// Records an accepted command: renews the session's timeout clock for time_left.
+  void note_command(std::string_view uuid, std::int64_t now_ns);
+
+  /// The loop ended a session (timeout, release, shutdown). Returns it if it was still known.
+  std::optional<session::SessionRecord> session_ended(std::size_t device, std::uint8_t slot, std::uint32_t generation);
+
+  bool any_active(std::size_t device) const;
+  Result<std::size_t> resolve_device(std::string_view name) const;
+  SessionStatus status(std::int64_t now_ns) const;
+
+ private:
+  std::vector<device::Device*> devices_;
+  mutable std::mutex mutex_;
+  session::SessionTable table_;
+  std::function<void()> on_change_;
+};
+
+}  // namespace robotd::service
