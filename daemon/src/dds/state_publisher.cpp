@@ -119,9 +119,10 @@ void StatePublisher::handle(const device::LoopEvent& event) {
       break;
     case device::LoopEvent::Type::kEstopCleared: spdlog::info("device '{}': e-stop reset", name); break;
     case device::LoopEvent::Type::kBlackBoxFrozen: {
-      const device::LoopState state = latest();
+      // A freeze carries the fault that caused it; none means someone asked for a capture.
       const std::string reason =
-          state.state == DeviceState::kFault ? std::string("fault: ") + state.fault.text.data() : "requested";
+          event.fault.code != 0 ? "fault " + std::to_string(event.fault.code) + ": " + event.fault.text.data()
+                                : "requested";
       if (black_box_.capture_if_frozen(reason)) spdlog::info("{}", black_box_.summary());
       break;
     }

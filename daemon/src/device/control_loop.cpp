@@ -306,6 +306,7 @@ void ControlLoop::latch_fault(const driver::FaultInfo& fault, std::int64_t now_n
     LoopEvent frozen;
     frozen.type = LoopEvent::Type::kBlackBoxFrozen;
     frozen.time_ns = now_ns;
+    frozen.fault = fault;
     post(frozen);
   }
 }

@@ -1,5 +1,6 @@
 #include "robotd/driver/json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -222,11 +223,12 @@ std::vector<std::pair<std::string, JsonReader>> JsonReader::object_map(std::stri
 
 void JsonReader::finish() {
   if (!value_->is_object()) return;
+  std::string known;
+  for (const auto& name : consumed_) known += (known.empty() ? "" : ", ") + name;
   for (const auto& [key, element] : value_->items()) {
     if (consumed_.find(key) != consumed_.end()) continue;
-    std::string known;
-    for (const auto& name : consumed_) known += (known.empty() ? "" : ", ") + name;
-    error(key, "unknown key (expected one of: " + known + ")");
+    error(key, known.empty() ? "unknown key (this object takes no keys)"
+                             : "unknown key (expected one of: " + known + ")");
   }
 }
 

@@ -1,0 +1,154 @@
+// End to end: starting and stopping robotd (issue test 7), and what it says when it cannot start.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "robotd_fixture.hpp"
+
+namespace robotd::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+class LifecycleTest : public RobotdTest {};
+
+// Issue test 7: SIGTERM mid-motion: sessions end, the arm is brought to its safe stop (DAMPING),
+// the driver disconnects, robotd exits 0.
+TEST_F(LifecycleTest, SigtermBringsTheArmToItsSafeStopAndExitsZero) {
+  start_robotd(sim_arm_config(domain_.id(), nullptr, {{"shutdown_behavior", "DAMPING"}, {"shutdown_ms", 300}}));
+  std::mutex mutex;
+  std::vector<DeviceStatus> statuses;
+  std::vector<SessionStatus> session_statuses;
+  JointState last_joint_state;
+  auto status_subscription = client().on_device_status([&](const DeviceStatus& s) {
+    const std::lock_guard lock(mutex);
+    statuses.push_back(s);
+  });
+  auto session_subscription = client().on_session_status([&](const SessionStatus& s) {
+    const std::lock_guard lock(mutex);
+    session_statuses.push_back(s);
+  });
+  auto joint_subscription = client().on_joint_states([&](const JointState& s) {
+    const std::lock_guard lock(mutex);
+    last_joint_state = s;
+  });
+
+  SessionRequest request;
+  request.device = "arm";
+  request.timeout = 5s;
+  auto session = client().request_control(request);
+  ASSERT_TRUE(session);
+  for (int i = 0; i < 30; ++i) {  // start a fast move and stop robotd in the middle of it
+    ASSERT_TRUE(session.value().send_positions({2.0F, 2.0F, 2.0F, 2.0F, 2.0F, 2.0F}));
+    std::this_thread::sleep_for(10ms);
+  }
+
+  const auto exit_status = robotd_->terminate(10s);
+  ASSERT_TRUE(exit_status.has_value()) << "robotd did not exit after SIGTERM";
+  EXPECT_EQ(*exit_status, 0) << robotd_->log();
+  std::this_thread::sleep_for(100ms);
+
+  const std::lock_guard lock(mutex);
+  ASSERT_FALSE(statuses.empty());
+  const DeviceStatus& final_status = statuses.back();
+  EXPECT_EQ(final_status.state, DeviceState::kStopped);
+  bool motors_disabled = false;
+  for (const auto& value : final_status.driver_values) {
+    if (value.key == "motors") motors_disabled = value.value == "disabled";
+  }
+  EXPECT_TRUE(motors_disabled) << "the driver was not disconnected before exit";
+  ASSERT_FALSE(session_statuses.empty());
+  EXPECT_TRUE(session_statuses.back().sessions.empty()) << "robotd exited with a session still listed";
+  // The safe stop (damping, 300 ms) brought the moving arm to rest before the driver let go.
+  for (const double v : last_joint_state.velocity) EXPECT_LT(std::fabs(v), 0.3);
+  const std::string log = robotd_->log();
+  EXPECT_NE(log.find("ended by shutdown"), std::string::npos) << log;
+  EXPECT_NE(log.find("safe stop"), std::string::npos) << log;
+}
+
+TEST_F(LifecycleTest, InvalidConfigIsRefusedWithKeyPathsAndExitCode2) {
+  nlohmann::json config = sim_arm_config(domain_.id());
+  config["devices"][0]["rate_hz"] = 0;
+  config["devices"][0]["realtime"] = "sometimes";
+  config["daemon"]["colour"] = "blue";
+  RobotdProcess robotd(config);
+  std::optional<int> status;
+  for (int i = 0; i < 200 && !status; ++i) {
+    status = robotd.exit_status();
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 2);
+  const std::string log = robotd.log();
+  EXPECT_NE(log.find("devices[0].rate_hz: expected an integer in 1..10000, got 0"), std::string::npos) << log;
+  EXPECT_NE(log.find("devices[0].realtime: expected one of"), std::string::npos) << log;
+  EXPECT_NE(log.find("daemon.colour: unknown key"), std::string::npos) << log;
+}
+
+TEST_F(LifecycleTest, InvalidDriverParamsNameTheDeviceParamsPath) {
+  nlohmann::json config = sim_arm_config(domain_.id());
+  config["devices"][0]["params"]["joint_defaults"]["inertia_kg_m2"] = -1;
+  RobotdProcess robotd(config);
+  std::optional<int> status;
+  for (int i = 0; i < 300 && !status; ++i) {
+    status = robotd.exit_status();
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 1);
+  EXPECT_NE(robotd.log().find("devices[0].params: joint_defaults.inertia_kg_m2"), std::string::npos) << robotd.log();
+}
+
+TEST_F(LifecycleTest, MissingRequiredPluginStopsRobotdSayingWhereItLooked) {
+  nlohmann::json config = sim_arm_config(domain_.id());
+  config["devices"][0]["driver"] = "nosuchdriver";
+  RobotdProcess robotd(config);
+  std::optional<int> status;
+  for (int i = 0; i < 300 && !status; ++i) {
+    status = robotd.exit_status();
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 1);
+  const std::string log = robotd.log();
+  EXPECT_NE(log.find("driver plugin 'nosuchdriver' not found: looked for librobotd_driver_nosuchdriver.so in"),
+            std::string::npos)
+      << log;
+}
+
+TEST_F(LifecycleTest, OptionalDeviceThatFailsLeavesTheOthersRunning) {
+  nlohmann::json config = sim_arm_config(domain_.id());
+  nlohmann::json broken = config["devices"][0];
+  broken["name"] = "gripper";
+  broken["driver"] = "nosuchdriver";
+  broken["required"] = false;
+  config["devices"].push_back(broken);
+  start_robotd(config);
+  auto devices = client().list_devices();
+  ASSERT_TRUE(devices);
+  ASSERT_EQ(devices.value().size(), 1U);
+  EXPECT_EQ(devices.value()[0].name, "arm");
+  EXPECT_NE(robotd_->log().find("continuing without device 'gripper'"), std::string::npos);
+}
+
+TEST_F(LifecycleTest, ListDevicesDescribesWhatEachDeviceSupports) {
+  start_robotd();
+  auto devices = client().list_devices();
+  ASSERT_TRUE(devices);
+  ASSERT_EQ(devices.value().size(), 1U);
+  const DeviceInfo& arm = devices.value()[0];
+  EXPECT_EQ(arm.driver, "sim");
+  EXPECT_EQ(arm.joint_names.size(), 6U);
+  EXPECT_EQ(arm.control_modes, (std::vector<std::string>{"POSITION", "TORQUE", "MIXED"}));
+  EXPECT_EQ(arm.behavior_map, (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_EQ(arm.position_max[0], 2.5);
+  bool has_recover = false;
+  for (const auto& op : arm.ops) has_recover = has_recover || op.rfind("recover:", 0) == 0;
+  EXPECT_TRUE(has_recover);
+}
+
+}  // namespace
+}  // namespace robotd::testing

@@ -1,0 +1,214 @@
+// End to end through a real robotd process: what must never reach a motor (issue tests 4, 5),
+// device faults and recovery, the black box.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "robotd_fixture.hpp"
+#include "session/session_uuid.hpp"
+
+namespace robotd::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+class SafetyTest : public RobotdTest {
+ protected:
+  Session acquire(std::vector<std::int32_t> motors, std::chrono::milliseconds timeout = 10s) {
+    SessionRequest request;
+    request.device = "arm";
+    request.motor_ids = std::move(motors);
+    request.on_timeout = Behavior::kKeep;
+    request.timeout = timeout;
+    auto session = client().request_control(request);
+    EXPECT_TRUE(session) << session.error().message;
+    return std::move(session.value());
+  }
+
+  ControlCommand command_for(const Session& session) {
+    ControlCommand command;
+    command.uuid = session.uuid();
+    command.device = "arm";
+    command.motor_ids = {0, 1};
+    command.positions = {0.4F, 0.4F};
+    return command;
+  }
+
+  /// Publishes `command` and waits until DeviceStatus has counted it.
+  CommandCounters send_and_count(const ControlCommand& command) {
+    const std::uint64_t before = device_status().commands.received;
+    EXPECT_TRUE(client().publish(command));
+    for (int i = 0; i < 100; ++i) {
+      const DeviceStatus status = device_status();
+      if (status.commands.received > before) return status.commands;
+    }
+    ADD_FAILURE() << "the command was never counted";
+    return {};
+  }
+};
+
+// Issue test 4: each bad command is rejected, counted by reason, and the arm does not move.
+TEST_F(SafetyTest, BadCommandsAreRejectedCountedAndNeverMoveTheArm) {
+  start_robotd();
+  Session session = acquire({0, 1, 2});
+  const JointState before = joint_state();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+
+  ControlCommand wrong_uuid = command_for(session);
+  wrong_uuid.uuid = session::random_session_uuid();
+  EXPECT_EQ(send_and_count(wrong_uuid).rejected_unknown_session, 1U);
+
+  ControlCommand unowned = command_for(session);
+  unowned.motor_ids = {0, 4};
+  EXPECT_EQ(send_and_count(unowned).rejected_not_owner, 1U);
+
+  ControlCommand unknown_motor = command_for(session);
+  unknown_motor.motor_ids = {0, 17};
+  EXPECT_EQ(send_and_count(unknown_motor).rejected_unknown_motor, 1U);
+
+  ControlCommand not_a_number = command_for(session);
+  not_a_number.positions = {0.4F, nan};
+  EXPECT_EQ(send_and_count(not_a_number).rejected_non_finite, 1U);
+
+  ControlCommand mismatched = command_for(session);
+  mismatched.positions = {0.4F};
+  EXPECT_EQ(send_and_count(mismatched).rejected_malformed, 1U);
+
+  ControlCommand out_of_range = command_for(session);
+  out_of_range.positions = {0.4F, 10.0F};
+  EXPECT_EQ(send_and_count(out_of_range).rejected_out_of_range, 1U);
+
+  ControlCommand wrong_device = command_for(session);
+  wrong_device.device = "humanoid";
+  const CommandCounters counters = send_and_count(wrong_device);
+  EXPECT_EQ(counters.rejected_wrong_device, 1U);
+  EXPECT_EQ(counters.accepted, 0U);
+  EXPECT_EQ(counters.rejected_total(), 7U);
+
+  // Nothing reached the driver: it was never commanded, and nothing moved.
+  for (const auto& joint : sim_state()["joints"]) EXPECT_EQ(joint["command"], "none") << joint.dump();
+  const JointState after = joint_state();
+  for (std::size_t j = 0; j < after.position.size(); ++j) EXPECT_NEAR(after.position[j], before.position[j], 1e-6);
+
+  // The same session's good command still works.
+  EXPECT_EQ(send_and_count(command_for(session)).accepted, 1U);
+  EXPECT_TRUE(wait_for_joints([](const JointState& s) { return std::fabs(s.position[0] - 0.4) < 0.01; }, 5s));
+}
+
+// Issue test 5: e-stop from a client with no session latches and blocks commands until reset.
+TEST_F(SafetyTest, EstopFromAnyClientLatchesAndBlocksCommandsUntilReset) {
+  start_robotd();
+  Session session = acquire({0, 1});
+  Client bystander = make_client("safety_officer");
+  ASSERT_TRUE(bystander.estop("", "test: hand in the workspace"));
+
+  const DeviceStatus engaged = device_status();
+  EXPECT_EQ(engaged.state, DeviceState::kEstop);
+  EXPECT_TRUE(engaged.estop_engaged);
+  EXPECT_NE(engaged.state_text.find("safety_officer"), std::string::npos) << engaged.state_text;
+
+  const JointState before = joint_state();
+  EXPECT_EQ(send_and_count(command_for(session)).rejected_estop, 1U);
+  std::this_thread::sleep_for(300ms);
+  EXPECT_NEAR(joint_state().position[0], before.position[0], 1e-6) << "a command moved an e-stopped arm";
+  EXPECT_TRUE(sim_state()["estop"].get<bool>()) << "the vendor e-stop was not triggered";
+
+  // Still latched later, and new sessions are refused while it is.
+  std::this_thread::sleep_for(200ms);
+  EXPECT_EQ(device_status().state, DeviceState::kEstop);
+  SessionRequest other;
+  other.device = "arm";
+  other.motor_ids = {5};
+  auto refused = client().request_control(other);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("e-stopped"), std::string::npos) << refused.error().message;
+
+  ASSERT_TRUE(bystander.reset_estop());
+  for (int i = 0; i < 20 && device_status().state != DeviceState::kRunning; ++i) std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(device_status().state, DeviceState::kRunning);
+  EXPECT_EQ(send_and_count(command_for(session)).accepted, 1U);
+  EXPECT_TRUE(wait_for_joints([](const JointState& s) { return std::fabs(s.position[0] - 0.4) < 0.01; }, 5s));
+}
+
+TEST_F(SafetyTest, InjectedFaultLatchesUntilRecoverAndTheArmDoesNotJump) {
+  start_robotd();
+  Session session = acquire({0, 1});
+  ASSERT_TRUE(wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.send_positions({0.4F, 0.4F});
+        return std::fabs(s.position[0] - 0.4) < 0.01;
+      },
+      5s));
+
+  ASSERT_TRUE(client().device_call("arm", "raise_fault", R"({"code": 42, "text": "overcurrent on joint1"})"));
+  DeviceStatus faulted = device_status();
+  for (int i = 0; i < 20 && faulted.state != DeviceState::kFault; ++i) faulted = device_status();
+  EXPECT_EQ(faulted.state, DeviceState::kFault);
+  EXPECT_EQ(faulted.fault_code, 42);
+  EXPECT_NE(faulted.fault_text.find("overcurrent"), std::string::npos);
+  EXPECT_EQ(send_and_count(command_for(session)).rejected_fault, 1U);
+
+  // The black box kept the ticks before the fault.
+  auto box = client().device_call("arm", "blackbox");
+  ASSERT_TRUE(box) << box.error().message;
+  const auto black_box = nlohmann::json::parse(box.value());
+  EXPECT_NE(black_box["reason"].get<std::string>().find("overcurrent"), std::string::npos);
+  EXPECT_GT(black_box["ticks"].size(), 100U);
+
+  const JointState before = joint_state();
+  auto recovered = client().device_call("arm", "recover");
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_EQ(device_status().state, DeviceState::kRunning);
+  // Recovery holds where the arm is: no jump back to a stale target.
+  std::this_thread::sleep_for(300ms);
+  const JointState after = joint_state();
+  EXPECT_NEAR(after.position[0], before.position[0], 0.05);
+  EXPECT_EQ(sim_state()["joints"][0]["command"], "position");
+}
+
+TEST_F(SafetyTest, StoppedFeedbackBecomesAFaultNamingTheSilence) {
+  start_robotd(sim_arm_config(domain_.id(), nullptr, {{"feedback_timeout_ms", 50}}));
+  ASSERT_TRUE(client().device_call("arm", "stop_feedback", R"({"enabled": true})"));
+  DeviceStatus status = device_status();
+  for (int i = 0; i < 20 && status.state != DeviceState::kFault; ++i) status = device_status();
+  EXPECT_EQ(status.state, DeviceState::kFault);
+  EXPECT_NE(status.fault_text.find("no feedback"), std::string::npos) << status.fault_text;
+
+  ASSERT_TRUE(client().device_call("arm", "recover"));
+  EXPECT_EQ(device_status().state, DeviceState::kRunning);
+}
+
+TEST_F(SafetyTest, LostLinkIsAFaultAndRecoverReconnects) {
+  start_robotd();
+  ASSERT_TRUE(client().device_call("arm", "disconnect"));
+  DeviceStatus status = device_status();
+  for (int i = 0; i < 20 && status.state != DeviceState::kFault; ++i) status = device_status();
+  EXPECT_EQ(status.state, DeviceState::kFault);
+  EXPECT_NE(status.fault_text.find("link lost"), std::string::npos) << status.fault_text;
+  SessionRequest request;
+  request.device = "arm";
+  auto refused = client().request_control(request);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("FAULT"), std::string::npos) << refused.error().message;
+
+  ASSERT_TRUE(client().device_call("arm", "recover"));
+  EXPECT_EQ(device_status().state, DeviceState::kRunning);
+  EXPECT_EQ(sim_state()["link"], "connected");
+}
+
+TEST_F(SafetyTest, ClampPolicyClampsInsteadOfRejecting) {
+  start_robotd(sim_arm_config(domain_.id(), nullptr, {{"limit_policy", "clamp"}}));
+  Session session = acquire({0, 1});
+  ControlCommand far = command_for(session);
+  far.positions = {10.0F, 0.0F};
+  const CommandCounters counters = send_and_count(far);
+  EXPECT_EQ(counters.accepted, 1U);
+  EXPECT_EQ(counters.clamped, 1U);
+  EXPECT_TRUE(wait_for_joints([](const JointState& s) { return std::fabs(s.position[0] - 2.5) < 0.02; }, 5s));
+}
+
+}  // namespace
+}  // namespace robotd::testing

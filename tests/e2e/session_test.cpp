@@ -1,0 +1,234 @@
+// End to end through a real robotd process: sessions (issue tests 1, 2, 3, 6).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "robotd_fixture.hpp"
+
+namespace robotd::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+SessionRequest arm_request(std::vector<std::int32_t> motors = {}, Behavior on_timeout = Behavior::kDamping,
+                           std::chrono::milliseconds timeout = 1000ms) {
+  SessionRequest request;
+  request.device = "arm";
+  request.motor_ids = std::move(motors);
+  request.on_timeout = on_timeout;
+  request.timeout = timeout;
+  return request;
+}
+
+double max_error(const JointState& state, const std::vector<float>& target) {
+  double worst = 0;
+  for (std::size_t j = 0; j < target.size(); ++j) worst = std::max(worst, std::fabs(state.position[j] - target[j]));
+  return worst;
+}
+
+class SessionTest : public RobotdTest {
+ protected:
+  void expect_fallback_after_kill(Behavior behavior, const std::string& behavior_name);
+};
+
+// Issue test 1. Also reports the loop timing DeviceStatus shows while the arm moves.
+TEST_F(SessionTest, AcquireMoveReadTargetBackRelease) {
+  start_robotd();
+  auto session = client().request_control(arm_request());
+  ASSERT_TRUE(session) << session.error().message;
+  EXPECT_EQ(session.value().motor_ids().size(), 6U);
+
+  const std::vector<float> target{0.5F, -0.3F, 0.8F, 0.2F, -0.6F, 1.0F};
+  const auto t0 = std::chrono::steady_clock::now();
+  bool arrived = false;
+  while (!arrived && std::chrono::steady_clock::now() - t0 < 5s) {
+    ASSERT_TRUE(session.value().send_positions(target));
+    auto state = client().next_joint_state("arm", 1s);
+    arrived = state && max_error(state.value(), target) < 0.01;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(arrived) << "arm did not reach the target within 5 s";
+  // The farthest joint moves 1.0 rad at <= 2 rad/s with 10 rad/s² ramps: at least ~0.7 s.
+  EXPECT_GT(seconds, 0.6) << "the move was faster than the velocity limit allows";
+
+  const DeviceStatus status = device_status();
+  EXPECT_EQ(status.state, DeviceState::kRunning);
+  EXPECT_GT(status.commands.accepted, 0U);
+  EXPECT_EQ(status.commands.rejected_total(), 0U);
+  EXPECT_GT(status.loop.window_ticks, 500U);
+  std::printf("[ measured ] arrived in %.2f s; loop wake latency p50 %.1f µs, p99 %.1f µs, max %.1f µs; "
+              "execution p50 %.1f µs, p99 %.1f µs; overruns %llu over %llu ticks; realtime %s\n",
+              seconds, status.loop.wake_latency_p50_us, status.loop.wake_latency_p99_us,
+              status.loop.wake_latency_max_us, status.loop.execution_p50_us, status.loop.execution_p99_us,
+              static_cast<unsigned long long>(status.loop.overruns),
+              static_cast<unsigned long long>(status.loop.ticks), status.loop.realtime ? "yes" : "no");
+
+  auto released = session.value().release(Behavior::kKeep);
+  ASSERT_TRUE(released) << released.error().message;
+  EXPECT_FALSE(session.value().active());
+  auto sessions = client().session_status(2s);
+  ASSERT_TRUE(sessions);
+  // The release is applied by the loop within a tick; status follows at once.
+  for (int i = 0; i < 50 && !sessions.value().sessions.empty(); ++i) {
+    std::this_thread::sleep_for(20ms);
+    sessions = client().session_status(2s);
+  }
+  EXPECT_TRUE(sessions.value().sessions.empty());
+  // KEEP: the arm stays at the target after release.
+  EXPECT_LT(max_error(joint_state(), target), 0.01);
+}
+
+// Issue test 2.
+TEST_F(SessionTest, OverlapRefusedNamingHolderDisjointGranted) {
+  start_robotd();
+  Client first = make_client("teleop");
+  Client second = make_client("planner");
+  auto held = first.request_control(arm_request({0, 1, 2}, Behavior::kDamping, 5000ms));
+  ASSERT_TRUE(held) << held.error().message;
+
+  auto overlap = second.request_control(arm_request({2, 3}));
+  ASSERT_FALSE(overlap);
+  EXPECT_EQ(overlap.error().code, ErrorCode::kRefused);
+  EXPECT_NE(overlap.error().message.find("held by node 'teleop'"), std::string::npos) << overlap.error().message;
+  EXPECT_NE(overlap.error().message.find(held.value().uuid()), std::string::npos) << overlap.error().message;
+  EXPECT_NE(overlap.error().message.find("motor(s) 2"), std::string::npos) << overlap.error().message;
+
+  auto disjoint = second.request_control(arm_request({3, 4, 5}));
+  ASSERT_TRUE(disjoint) << disjoint.error().message;
+  auto status = client().session_status(2s);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status.value().sessions.size(), 2U);
+  EXPECT_EQ(status.value().state, "active");
+
+  auto available = client().available_motors("arm");
+  ASSERT_TRUE(available);
+  EXPECT_TRUE(available.value().motor_ids.empty());
+}
+
+// Issue test 3: a client killed mid-stream; its session ends after timeout_ms and the
+// motors are in the requested fallback. Prints how long it took.
+void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::string& behavior_name) {
+  constexpr int kTimeoutMs = 300;
+  ChildProcess streamer(COMMAND_STREAMER, {"--domain", std::to_string(domain_.id()), "--timeout-ms",
+                                           std::to_string(kTimeoutMs), "--on-timeout", behavior_name});
+  const auto uuid_line = streamer.read_line(10s);
+  ASSERT_TRUE(uuid_line.has_value());
+  ASSERT_EQ(uuid_line->rfind("uuid ", 0), 0U) << *uuid_line;
+  const std::string uuid = uuid_line->substr(5);
+  std::this_thread::sleep_for(300ms);  // streaming at 1 kHz
+
+  const auto killed_at = std::chrono::steady_clock::now();
+  streamer.kill_hard();
+  bool ended = false;
+  std::chrono::steady_clock::time_point ended_at;
+  while (!ended && std::chrono::steady_clock::now() - killed_at < 3s) {
+    auto status = client().session_status(1s);
+    ended = status && status.value().sessions.empty();
+    ended_at = std::chrono::steady_clock::now();
+    if (!ended) std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_TRUE(ended) << "session " << uuid << " did not end after its client died";
+  const double elapsed_ms = std::chrono::duration<double, std::milli>(ended_at - killed_at).count();
+  std::printf("[ measured ] %s fallback: session ended %.1f ms after SIGKILL (timeout_ms %d)\n", behavior_name.c_str(),
+              elapsed_ms, kTimeoutMs);
+  EXPECT_GE(elapsed_ms, kTimeoutMs - 5);
+  EXPECT_LT(elapsed_ms, kTimeoutMs + 250);
+
+  const nlohmann::json sim = sim_state();
+  for (const auto& joint : sim["joints"]) {
+    EXPECT_EQ(joint["command"], "impedance") << joint.dump();
+    EXPECT_EQ(joint["kp"], 0.0) << joint.dump();
+    if (behavior == Behavior::kDamping) {
+      EXPECT_GT(joint["kd"].get<double>(), 0.0) << joint.dump();
+    } else {
+      EXPECT_EQ(joint["kd"], 0.0) << joint.dump();
+    }
+  }
+}
+
+TEST_F(SessionTest, KilledClientDampingFallbackDampsTheLoadedJoint) {
+  start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
+  expect_fallback_after_kill(Behavior::kDamping, "DAMPING");
+  // Damped, joint2 sinks under its 2 N·m load at about 2 / (kd 10 + friction 0.3) ≈ 0.19 rad/s.
+  std::this_thread::sleep_for(200ms);
+  const JointState state = joint_state();
+  EXPECT_LT(state.velocity[1], -0.1);
+  EXPECT_GT(state.velocity[1], -0.35);
+}
+
+TEST_F(SessionTest, KilledClientZeroTorqueFallbackLetsTheLoadedJointFall) {
+  start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
+  expect_fallback_after_kill(Behavior::kZeroTorque, "ZERO_TORQUE");
+  // Let go, joint2 falls freely (only friction 0.3 resists) until its hard stop at -2.5 rad.
+  EXPECT_TRUE(wait_for_joints([](const JointState& s) { return s.position[1] < -2.4; }, 5s));
+}
+
+TEST_F(SessionTest, KeepFallbackHoldsPosition) {
+  start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
+  auto session = client().request_control(arm_request({}, Behavior::kKeep, 200ms));
+  ASSERT_TRUE(session);
+  const std::vector<float> target{0.2F, 0.4F, 0, 0, 0, 0};
+  ASSERT_TRUE(wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.value().send_positions(target);
+        return max_error(s, target) < 0.02;
+      },
+      5s));
+  std::this_thread::sleep_for(700ms);  // the session times out after 200 ms
+  auto status = client().session_status(1s);
+  ASSERT_TRUE(status);
+  EXPECT_TRUE(status.value().sessions.empty());
+  EXPECT_LT(max_error(joint_state(), target), 0.02) << "KEEP must hold the last target";
+}
+
+// Issue test 6.
+TEST_F(SessionTest, ResetZeroRefusedWhileSessionActiveAndWorksWithout) {
+  start_robotd();
+  auto session = client().request_control(arm_request({0, 1}, Behavior::kKeep, 5000ms));
+  ASSERT_TRUE(session);
+  ASSERT_TRUE(wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.value().send_positions({0.3F, -0.2F});
+        return std::fabs(s.position[0] - 0.3) < 0.01 && std::fabs(s.position[1] + 0.2) < 0.01;
+      },
+      5s));
+
+  auto refused = client().reset_zero("arm", {});
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kRefused);
+  EXPECT_NE(refused.error().message.find("session is active"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find(session.value().uuid()), std::string::npos) << refused.error().message;
+
+  ASSERT_TRUE(session.value().release(Behavior::kKeep));
+  std::this_thread::sleep_for(50ms);
+  auto zeroed = client().reset_zero("arm", {0, 1});
+  ASSERT_TRUE(zeroed) << zeroed.error().message;
+  const JointState after = joint_state();
+  EXPECT_NEAR(after.position[0], 0.0, 0.1);
+  EXPECT_NEAR(after.position[1], 0.0, 0.1);
+}
+
+TEST_F(SessionTest, CommandsFromAReleasedSessionAreRejected) {
+  start_robotd();
+  auto session = client().request_control(arm_request());
+  ASSERT_TRUE(session);
+  const std::string uuid = session.value().uuid();
+  ASSERT_TRUE(session.value().release(Behavior::kKeep));
+  ControlCommand stale;
+  stale.uuid = uuid;
+  stale.motor_ids = {0};
+  stale.positions = {0.5F};
+  ASSERT_TRUE(client().publish(stale));
+  DeviceStatus status = device_status();
+  for (int i = 0; i < 40 && status.commands.rejected_unknown_session == 0; ++i) status = device_status();
+  EXPECT_EQ(status.commands.rejected_unknown_session, 1U);
+  EXPECT_EQ(status.commands.accepted, 0U);
+  // Released with KEEP the joint holds where it was; it never heads for the stale 0.5 rad.
+  std::this_thread::sleep_for(300ms);
+  EXPECT_NEAR(joint_state().position[0], 0.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace robotd::testing

@@ -1,0 +1,57 @@
+#include "robotd_fixture.hpp"
+
+#include <thread>
+
+namespace robotd::testing {
+
+void RobotdTest::start_robotd(const nlohmann::json& config, std::vector<std::string> environment) {
+  robotd_ = std::make_unique<RobotdProcess>(config.is_null() ? sim_arm_config(domain_.id()) : config,
+                                            std::move(environment));
+  auto client = Client::connect(client_options(domain_.id()));
+  ASSERT_TRUE(client) << client.error().message;
+  client_.emplace(std::move(client.value()));
+  ASSERT_TRUE(robotd_->wait_ready(*client_)) << "robotd did not become ready:\n" << robotd_->log();
+}
+
+void RobotdTest::TearDown() {
+  client_.reset();
+  if (robotd_ && HasFailure()) std::cerr << "---- robotd log ----\n" << robotd_->log() << "--------------------\n";
+  robotd_.reset();
+}
+
+Client RobotdTest::make_client(const std::string& node_name) {
+  auto client = Client::connect(client_options(domain_.id(), node_name));
+  EXPECT_TRUE(client) << client.error().message;
+  return std::move(client.value());
+}
+
+DeviceStatus RobotdTest::device_status(const std::string& device) {
+  auto status = client_->next_device_status(device, std::chrono::seconds(3));
+  EXPECT_TRUE(status) << status.error().message;
+  return status ? status.value() : DeviceStatus{};
+}
+
+JointState RobotdTest::joint_state(const std::string& device) {
+  auto state = client_->next_joint_state(device, std::chrono::seconds(3));
+  EXPECT_TRUE(state) << state.error().message;
+  return state ? state.value() : JointState{};
+}
+
+nlohmann::json RobotdTest::sim_state(const std::string& device) {
+  auto state = client_->device_call(device, "state");
+  EXPECT_TRUE(state) << state.error().message;
+  return state ? nlohmann::json::parse(state.value()) : nlohmann::json::object();
+}
+
+bool RobotdTest::wait_for_joints(const std::function<bool(const JointState&)>& predicate,
+                                 std::chrono::milliseconds timeout, const std::string& device) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    auto state = client_->next_joint_state(device, std::chrono::seconds(1));
+    if (state && predicate(state.value())) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+}  // namespace robotd::testing
