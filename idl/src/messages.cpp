@@ -24,8 +24,7 @@ template <class Enum, std::size_t N>
 std::optional<Enum> parse_enum(std::string_view text, const std::array<std::string_view, N>& names) {
   for (std::size_t i = 0; i < N; ++i) {
     const std::string with_suffix = std::string(names[i]) + "_MODE";
-    if (equals_ignoring_case(text, names[i]) || equals_ignoring_case(text, with_suffix) ||
-        text == std::to_string(i)) {
+    if (equals_ignoring_case(text, names[i]) || equals_ignoring_case(text, with_suffix) || text == std::to_string(i)) {
       return static_cast<Enum>(i);
     }
   }
@@ -41,11 +40,16 @@ constexpr std::array<std::string_view, 6> kStateNames{"CONNECTING", "RUNNING",  
 
 const char* to_string(ErrorCode code) {
   switch (code) {
-    case ErrorCode::kTimeout: return "timeout";
-    case ErrorCode::kNotAvailable: return "not available";
-    case ErrorCode::kRefused: return "refused";
-    case ErrorCode::kInvalidArgument: return "invalid argument";
-    case ErrorCode::kTransport: return "transport error";
+    case ErrorCode::kTimeout:
+      return "timeout";
+    case ErrorCode::kNotAvailable:
+      return "not available";
+    case ErrorCode::kRefused:
+      return "refused";
+    case ErrorCode::kInvalidArgument:
+      return "invalid argument";
+    case ErrorCode::kTransport:
+      return "transport error";
   }
   return "unknown error";
 }

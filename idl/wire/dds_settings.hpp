@@ -13,8 +13,8 @@ struct DdsSettings {
   std::string network_interface = "127.0.0.1";  // address or interface name; "" = Cyclone picks
   bool multicast = false;
   std::vector<std::string> peers{"127.0.0.1"};  // unicast discovery peers (needed without multicast)
-  int max_participant_index = 120;  // participants per host reachable by unicast discovery
-  std::string cyclonedds_xml;       // non-empty: used verbatim instead of the fields above
+  int max_participant_index = 120;              // participants per host reachable by unicast discovery
+  std::string cyclonedds_xml;                   // non-empty: used verbatim instead of the fields above
 };
 
 /// The Cyclone DDS configuration (XML) for `settings`.

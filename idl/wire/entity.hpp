@@ -1,9 +1,9 @@
 // Owns one Cyclone DDS entity handle and deletes it (and its children) when dropped.
 #pragma once
 
-#include <dds/dds.h>
-
 #include <utility>
+
+#include <dds/dds.h>
 
 namespace robotd::wire {
 

@@ -3,9 +3,9 @@
 // created on first use and deleted with its last participant.
 #pragma once
 
-#include <dds/dds.h>
-
 #include <string>
+
+#include <dds/dds.h>
 
 #include "robotd/result.hpp"
 #include "wire/dds_settings.hpp"

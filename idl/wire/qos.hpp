@@ -3,9 +3,9 @@
 // holds what. Every profile pins XCDR1, the only representation rmw_cyclonedds accepts.
 #pragma once
 
-#include <dds/dds.h>
-
 #include <memory>
+
+#include <dds/dds.h>
 
 namespace robotd::wire {
 
@@ -14,7 +14,7 @@ struct QosDeleter {
 };
 using QosPtr = std::unique_ptr<dds_qos_t, QosDeleter>;
 
-QosPtr reliable_qos(int depth);        // ROS default profile: reliable, volatile, keep last `depth`
+QosPtr reliable_qos(int depth);         // ROS default profile: reliable, volatile, keep last `depth`
 QosPtr transient_local_qos(int depth);  // reliable, transient local, keep last `depth`
 QosPtr service_qos();                   // ROS services default: reliable, volatile, keep last 10
 

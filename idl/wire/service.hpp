@@ -47,9 +47,9 @@ class ServiceServer {
     const dds_entity_t writer =
         dds_create_writer(participant.handle(), reply_topic_entity.value().get(), qos.get(), nullptr);
     if (writer < 0) return make_error(ErrorCode::kTransport, dds_error("create a service reply writer", writer));
-    return std::unique_ptr<ServiceServer>(new ServiceServer(std::string(service), std::move(request_topic_entity.value()),
-                                                            std::move(reply_topic_entity.value()), Entity(reader),
-                                                            Entity(writer)));
+    return std::unique_ptr<ServiceServer>(
+        new ServiceServer(std::string(service), std::move(request_topic_entity.value()),
+                          std::move(reply_topic_entity.value()), Entity(reader), Entity(writer)));
   }
 
   const std::string& name() const { return name_; }
@@ -121,9 +121,9 @@ class ServiceClient {
     if (reader < 0) return make_error(ErrorCode::kTransport, dds_error("create a service reply reader", reader));
     dds_instance_handle_t guid = 0;
     dds_get_instance_handle(writer, &guid);
-    return std::unique_ptr<ServiceClient>(new ServiceClient(
-        participant.handle(), std::string(service), std::move(request_topic_entity.value()),
-        std::move(reply_topic_entity.value()), Entity(writer), Entity(reader), guid));
+    return std::unique_ptr<ServiceClient>(
+        new ServiceClient(participant.handle(), std::string(service), std::move(request_topic_entity.value()),
+                          std::move(reply_topic_entity.value()), Entity(writer), Entity(reader), guid));
   }
 
   /// Sends `request` and waits for its reply. Never waits longer than `timeout` in total.
@@ -131,10 +131,10 @@ class ServiceClient {
     const std::lock_guard lock(mutex_);
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     if (!wait_until_matched(deadline)) {
-      return make_error(ErrorCode::kNotAvailable,
-                        "no robotd answers /" + name_ + " on this DDS domain within " +
-                            std::to_string(timeout.count()) + " ms: is robotd running, with the same domain id and "
-                            "network interface?");
+      return make_error(ErrorCode::kNotAvailable, "no robotd answers /" + name_ + " on this DDS domain within " +
+                                                      std::to_string(timeout.count()) +
+                                                      " ms: is robotd running, with the same domain id and "
+                                                      "network interface?");
     }
     typename Wire<Request>::C sample{};
     CArena arena;
@@ -193,8 +193,8 @@ class ServiceClient {
       }
       const auto now = std::chrono::steady_clock::now();
       if (now >= deadline) {
-        return make_error(ErrorCode::kTimeout, "robotd did not answer /" + name_ + " within " +
-                                                   std::to_string(timeout.count()) + " ms");
+        return make_error(ErrorCode::kTimeout,
+                          "robotd did not answer /" + name_ + " within " + std::to_string(timeout.count()) + " ms");
       }
       const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - now).count();
       dds_waitset_wait(waitset_.get(), nullptr, 0, left);

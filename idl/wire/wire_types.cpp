@@ -197,7 +197,8 @@ SessionStatus Wire<SessionStatus>::from_c(const C& in) {
   out.active_uuids = copy_string_sequence(in.active_uuids);
   out.node_names = copy_string_sequence(in.node_names);
   out.motor_counts = copy_sequence<std::int32_t>(in.motor_counts);
-  for (std::uint32_t i = 0; i < in.sessions._length; ++i) out.sessions.push_back(session_info_from_c(in.sessions._buffer[i]));
+  for (std::uint32_t i = 0; i < in.sessions._length; ++i)
+    out.sessions.push_back(session_info_from_c(in.sessions._buffer[i]));
   return out;
 }
 
@@ -229,12 +230,18 @@ void Wire<DeviceStatus>::to_c(const DeviceStatus& in, C& out, CArena& arena) {
               l.execution_max_us,
               l.rt_heap_allocations};
   const CommandCounters& c = in.commands;
-  out.commands = {c.received,          c.accepted,
-                  c.clamped,           c.rejected_unknown_session,
-                  c.rejected_wrong_device, c.rejected_not_owner,
-                  c.rejected_unknown_motor, c.rejected_malformed,
-                  c.rejected_non_finite, c.rejected_out_of_range,
-                  c.rejected_estop,    c.rejected_fault,
+  out.commands = {c.received,
+                  c.accepted,
+                  c.clamped,
+                  c.rejected_unknown_session,
+                  c.rejected_wrong_device,
+                  c.rejected_not_owner,
+                  c.rejected_unknown_motor,
+                  c.rejected_malformed,
+                  c.rejected_non_finite,
+                  c.rejected_out_of_range,
+                  c.rejected_estop,
+                  c.rejected_fault,
                   c.dropped_stale};
   auto* values = arena.array<robotd_msgs_msg_dds__KeyValue_>(in.driver_values.size());
   for (std::size_t i = 0; i < in.driver_values.size(); ++i) {
@@ -432,7 +439,9 @@ const dds_topic_descriptor_t& Wire<ListDevicesRequest>::descriptor() {
 void Wire<ListDevicesRequest>::to_c(const ListDevicesRequest& in, C& out, CArena& /*arena*/) {
   out.node_name = c_string(in.node_name);
 }
-ListDevicesRequest Wire<ListDevicesRequest>::from_c(const C& in) { return ListDevicesRequest{copy_string(in.node_name)}; }
+ListDevicesRequest Wire<ListDevicesRequest>::from_c(const C& in) {
+  return ListDevicesRequest{copy_string(in.node_name)};
+}
 
 const dds_topic_descriptor_t& Wire<ListDevicesResponse>::descriptor() {
   return robotd_msgs_srv_dds__ListDevices_Response__desc;
@@ -446,7 +455,8 @@ void Wire<ListDevicesResponse>::to_c(const ListDevicesResponse& in, C& out, CAre
 }
 ListDevicesResponse Wire<ListDevicesResponse>::from_c(const C& in) {
   ListDevicesResponse out;
-  for (std::uint32_t i = 0; i < in.devices._length; ++i) out.devices.push_back(device_info_from_c(in.devices._buffer[i]));
+  for (std::uint32_t i = 0; i < in.devices._length; ++i)
+    out.devices.push_back(device_info_from_c(in.devices._buffer[i]));
   return out;
 }
 

@@ -13,13 +13,13 @@ namespace robotd::wire {
 template <class T>
 struct Wire;
 
-#define ROBOTD_WIRE_TYPE(CppType, CType)                          \
-  template <>                                                     \
-  struct Wire<CppType> {                                          \
-    using C = CType;                                              \
-    static const dds_topic_descriptor_t& descriptor();            \
-    static void to_c(const CppType& in, C& out, CArena& arena);   \
-    static CppType from_c(const C& in);                           \
+#define ROBOTD_WIRE_TYPE(CppType, CType)                        \
+  template <>                                                   \
+  struct Wire<CppType> {                                        \
+    using C = CType;                                            \
+    static const dds_topic_descriptor_t& descriptor();          \
+    static void to_c(const CppType& in, C& out, CArena& arena); \
+    static CppType from_c(const C& in);                         \
   }
 
 ROBOTD_WIRE_TYPE(ControlCommand, robotd_msgs_msg_dds__ControlCommand_);

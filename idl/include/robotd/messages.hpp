@@ -51,12 +51,12 @@ struct ControlCommand {
   Header header;
   std::string uuid;
   std::vector<std::int32_t> motor_ids;
-  std::vector<float> positions;   // rad
-  std::vector<float> velocities;  // rad/s
-  std::vector<float> kp;          // N·m/rad
-  std::vector<float> kd;          // N·m·s/rad
-  std::vector<float> torques;     // N·m
-  std::string device;             // "" = the session's device
+  std::vector<float> positions;     // rad
+  std::vector<float> velocities;    // rad/s
+  std::vector<float> kp;            // N·m/rad
+  std::vector<float> kd;            // N·m·s/rad
+  std::vector<float> torques;       // N·m
+  std::string device;               // "" = the session's device
   std::int64_t sent_steady_ns = 0;  // sender's CLOCK_MONOTONIC at publish, 0 = unknown
 };
 

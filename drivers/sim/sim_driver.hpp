@@ -1,0 +1,139 @@
+// The simulated robot: N joints behind motors (joint_dynamics.hpp) and an optional still base
+// IMU, with fault injection through call() for tests and the no-hardware demo.
+//
+// Threads, beyond driver.hpp's contract: call() and diagnostics() share with the RT thread only
+// atomics and two sequence locks. The RT thread publishes a snapshot of the joints after every
+// read(); faults injected through call() reach the RT thread through a sequence lock it reads
+// without waiting (a read that races a write keeps the previous copy, one tick late at worst).
+//
+// The simulated controller damps every joint (kp = 0, kd = default_kd) while the e-stop flag of
+// the last command frame is set, while a fault is injected and while the link is lost, as a
+// motor controller's fault or command timeout would. After recover() no earlier command is
+// resumed: the joints are unpowered until the next write().
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "joint_dynamics.hpp"
+#include "robotd/driver/driver.hpp"
+#include "robotd/driver/json_reader.hpp"
+#include "seqlock.hpp"
+#include "sim_params.hpp"
+
+namespace robotd::sim {
+
+/// FaultInfo codes of the sim's own link states (an injected fault carries the code it was given).
+inline constexpr std::int32_t kNotConnectedFaultCode = -1;
+inline constexpr std::int32_t kLinkLostFaultCode = -2;
+
+inline constexpr double kNativeRateHz = 1000;
+inline constexpr double kStandardGravity_m_s2 = 9.81;
+
+struct SimJointSnapshot {
+  double position_rad = 0;           // reported: after the zero offset
+  double physical_position_rad = 0;  // before the zero offset
+  double velocity_rad_s = 0;
+  double torque_nm = 0;  // applied by the motor
+  double kp = 0;         // gains applied, after defaults, limits and e-stop
+  double kd = 0;
+  driver::JointCommandKind command = driver::JointCommandKind::kNone;
+};
+
+/// What the RT thread publishes after every physics step.
+struct SimSnapshot {
+  std::size_t joint_count = 0;
+  bool estop = false;
+  std::array<SimJointSnapshot, driver::kMaxJoints> joints{};
+};
+
+struct InjectedFaults {
+  bool feedback_stopped = false;
+  bool link_lost = false;
+  driver::FaultInfo fault{};  // code 0: none
+
+  bool halts_motors() const noexcept { return link_lost || fault.code != 0; }
+};
+
+class SimDriver final : public driver::Driver {
+ public:
+  Result<void> configure(const nlohmann::json& params) override;
+  driver::DeviceDescription describe() const override;
+
+  Result<void> connect() override;
+  void disconnect() noexcept override;
+  Result<void> recover() override;
+  /// Each listed joint then reads 0 where it stands; an empty list means every joint. The
+  /// configured limits stay in the reported frame, so the hard stops move with the zero.
+  Result<void> reset_zero(std::span<const int> joints) override;
+
+  /// Advances the simulation by the CLOCK_MONOTONIC time since the previous read().
+  driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
+  driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
+
+  Result<nlohmann::json> call(const std::string& op, const nlohmann::json& args) override;
+  driver::Diagnostics diagnostics() const override;
+
+  /// read() at an explicit CLOCK_MONOTONIC time, so a test can run the simulation on its own clock.
+  driver::IoResult read_at(std::int64_t now_ns, driver::Feedback& out, driver::FaultInfo& fault) noexcept;
+
+ private:
+  // RT side (sim_driver.cpp).
+  /// Applies what connect(), recover() and call() changed since the last tick; false while not connected.
+  bool refresh_link_state(driver::FaultInfo& fault) noexcept;
+  /// kOk, or the injected link loss or fault that halts the motors.
+  driver::IoResult injected_link_status(driver::FaultInfo& fault) const noexcept;
+  void advance_physics(std::int64_t now_ns) noexcept;
+  void fill_feedback(driver::Feedback& out) const noexcept;
+
+  // Non-RT side (sim_driver_ops.cpp).
+  Result<nlohmann::json> stop_feedback(const nlohmann::json& args);
+  Result<nlohmann::json> inject_disconnect(const nlohmann::json& args);
+  Result<nlohmann::json> raise_fault(const nlohmann::json& args);
+  Result<nlohmann::json> set_external_torque(const nlohmann::json& args);
+  Result<nlohmann::json> state(const nlohmann::json& args) const;
+  std::optional<std::size_t> joint_argument(JsonReader& reader, const nlohmann::json& args) const;
+  template <class Change>
+  void change_injected_faults(Change change);
+
+  // Set by configure(), which never runs while the RT thread does.
+  SimParams params_;
+  bool configured_ = false;
+
+  // Shared between the RT thread and the others.
+  std::atomic<bool> connected_{false};
+  // Bumped by connect() and recover(): the RT thread then drops the stored command and restarts its clock.
+  std::atomic<std::uint64_t> link_generation_{0};
+  std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
+  std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
+  SeqLock<InjectedFaults> injected_faults_;
+  std::mutex injected_faults_writer_mutex_;  // serialises non-RT writers; never taken by the RT thread
+  SeqLock<SimSnapshot> snapshot_;
+
+  // RT thread only.
+  std::array<JointState, driver::kMaxJoints> joints_{};
+  driver::CommandFrame command_{};
+  InjectedFaults rt_injected_faults_{};
+  SimSnapshot rt_snapshot_{};
+  std::uint64_t rt_link_generation_ = 0;
+  bool rt_clock_started_ = false;
+  std::int64_t rt_last_step_ns_ = 0;
+};
+
+template <class Change>
+void SimDriver::change_injected_faults(Change change) {
+  const std::lock_guard lock(injected_faults_writer_mutex_);
+  InjectedFaults faults = injected_faults_.load();
+  change(faults);
+  injected_faults_.store(faults);
+}
+
+}  // namespace robotd::sim

@@ -1,0 +1,244 @@
+// SimDriver's non-RT side: describe(), diagnostics() and the call() ops.
+#include <algorithm>
+#include <array>
+#include <exception>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "sim_driver.hpp"
+
+namespace robotd::sim {
+namespace {
+
+using driver::JointCommandKind;
+
+struct OpSpec {
+  std::string_view name;
+  std::string_view help;
+};
+
+constexpr std::array<OpSpec, 5> kOps{{
+    {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
+    {"disconnect", R"({}: simulate a lost link; read()/write() report it and the joints damp until recover())"},
+    {"raise_fault",
+     R"({"code": int != 0, "text": string}: simulate a controller fault; read()/write() report it and the joints )"
+     R"(damp until recover())"},
+    {"set_external_torque",
+     R"({"joint": name or index, "torque_nm": number}: set the constant load on a joint in N·m (e.g. gravity))"},
+    {"state", R"({}: per joint position (rad), velocity (rad/s), applied torque (N·m), command kind, applied kp, kd; )"
+              R"(e-stop, link, feedback and injected fault)"},
+}};
+
+std::string_view help_of(std::string_view op) {
+  const auto* spec =
+      std::find_if(kOps.begin(), kOps.end(), [&](const OpSpec& candidate) { return candidate.name == op; });
+  return spec == kOps.end() ? std::string_view{} : spec->help;
+}
+
+Error invalid_arguments(std::string_view op, const std::vector<std::string>& errors) {
+  return make_error(ErrorCode::kInvalidArgument,
+                    std::string(op) + ": " + join_errors(errors) + " (expects " + std::string(help_of(op)) + ")");
+}
+
+/// For ops that take no arguments: an error naming what was given, or nullopt.
+std::optional<Error> unexpected_arguments(std::string_view op, const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  if (!args.is_object()) {
+    errors.push_back(std::string("args: expected an object, got ") + args.type_name());
+  } else if (!args.empty()) {
+    errors.push_back("args." + args.begin().key() + ": unknown key (this op takes no arguments)");
+  }
+  return errors.empty() ? std::nullopt : std::optional(invalid_arguments(op, errors));
+}
+
+/// A missing args value means no arguments.
+const nlohmann::json& args_object(const nlohmann::json& args) {
+  static const nlohmann::json kNoArguments = nlohmann::json::object();
+  return args.is_null() ? kNoArguments : args;
+}
+
+const char* command_kind_name(JointCommandKind kind) {
+  switch (kind) {
+    case JointCommandKind::kNone:
+      return "none";
+    case JointCommandKind::kPosition:
+      return "position";
+    case JointCommandKind::kImpedance:
+      return "impedance";
+  }
+  return "unknown";
+}
+
+/// "position:6" or "impedance:4,none:2": how many joints have each command kind.
+std::string command_kind_counts(const SimSnapshot& snapshot) {
+  std::string text;
+  for (const JointCommandKind kind :
+       {JointCommandKind::kPosition, JointCommandKind::kImpedance, JointCommandKind::kNone}) {
+    const auto joints = std::span(snapshot.joints).first(snapshot.joint_count);
+    const auto count = std::count_if(joints.begin(), joints.end(),
+                                     [&](const SimJointSnapshot& joint) { return joint.command == kind; });
+    if (count == 0) continue;
+    text += (text.empty() ? "" : ",") + std::string(command_kind_name(kind)) + ":" + std::to_string(count);
+  }
+  return text;
+}
+
+std::string fault_text(const driver::FaultInfo& fault) {
+  if (fault.code == 0) return "none";
+  return "code " + std::to_string(fault.code) + ": " + fault.text.data();
+}
+
+}  // namespace
+
+driver::DeviceDescription SimDriver::describe() const {
+  driver::DeviceDescription description;
+  description.model = params_.model;
+  description.native_rate_hz = kNativeRateHz;
+  for (const SimJointParams& joint : params_.joints) {
+    description.joints.push_back(driver::JointDescription{
+        .name = joint.name, .limits = joint.limits, .default_kp = joint.default_kp, .default_kd = joint.default_kd});
+  }
+  description.supports_torque = true;
+  description.supports_damping = true;
+  description.supports_zero_torque = true;
+  description.has_imu = params_.imu;
+  for (const OpSpec& op : kOps) description.ops.push_back({std::string(op.name), std::string(op.help)});
+  return description;
+}
+
+driver::Diagnostics SimDriver::diagnostics() const {
+  const SimSnapshot snapshot = snapshot_.load();
+  const InjectedFaults injected = injected_faults_.load();
+  const bool connected = connected_.load();
+  return {
+      {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
+      {"motors", connected ? "enabled" : "disabled"},
+      {"estop", snapshot.estop ? "engaged" : "clear"},
+      {"injected_fault", fault_text(injected.fault)},
+      {"modes", command_kind_counts(snapshot)},
+      {"feedback", injected.feedback_stopped ? "stopped" : "streaming"},
+  };
+}
+
+Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::json& args) {
+  if (!configured_) return make_error(ErrorCode::kRefused, op + ": the sim driver is not configured");
+  try {
+    const nlohmann::json& arguments = args_object(args);
+    if (op == "stop_feedback") return stop_feedback(arguments);
+    if (op == "disconnect") return inject_disconnect(arguments);
+    if (op == "raise_fault") return raise_fault(arguments);
+    if (op == "set_external_torque") return set_external_torque(arguments);
+    if (op == "state") return state(arguments);
+  } catch (const std::exception& e) {
+    return make_error(ErrorCode::kInvalidArgument, op + ": " + e.what());
+  }
+  std::string known;
+  for (const OpSpec& spec : kOps) known += (known.empty() ? "" : ", ") + std::string(spec.name);
+  return make_error(ErrorCode::kInvalidArgument, "unknown op \"" + op + "\" (the sim driver has: " + known + ")");
+}
+
+Result<nlohmann::json> SimDriver::stop_feedback(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  reader.require("enabled", "true or false");
+  const bool enabled = reader.boolean_or("enabled", false);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("stop_feedback", errors);
+  change_injected_faults([&](InjectedFaults& faults) { faults.feedback_stopped = enabled; });
+  return nlohmann::json{{"feedback", enabled ? "stopped" : "streaming"}};
+}
+
+Result<nlohmann::json> SimDriver::inject_disconnect(const nlohmann::json& args) {
+  if (auto error = unexpected_arguments("disconnect", args)) return *error;
+  change_injected_faults([](InjectedFaults& faults) { faults.link_lost = true; });
+  return nlohmann::json{{"link", "disconnected"}};
+}
+
+Result<nlohmann::json> SimDriver::raise_fault(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  reader.require("code", "an integer other than 0");
+  reader.require("text", "a string");
+  const auto code =
+      reader.integer("code", std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max());
+  if (code == 0) reader.error("code", "expected an integer other than 0 (0 means no fault), got 0");
+  const auto text = reader.string("text");
+  constexpr std::size_t kMaxTextLength = driver::FaultInfo{}.text.size() - 1;
+  if (text && (text->empty() || text->size() > kMaxTextLength)) {
+    reader.error("text",
+                 "expected 1.." + std::to_string(kMaxTextLength) + " characters, got " + std::to_string(text->size()));
+  }
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("raise_fault", errors);
+  change_injected_faults(
+      [&](InjectedFaults& faults) { faults.fault.set(static_cast<std::int32_t>(*code), text->c_str()); });
+  return nlohmann::json{{"fault", {{"code", *code}, {"text", *text}}}};
+}
+
+Result<nlohmann::json> SimDriver::set_external_torque(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  const std::optional<std::size_t> joint = joint_argument(reader, args);
+  reader.require("torque_nm", "a number (N·m)");
+  const std::optional<double> torque_nm = reader.number("torque_nm");
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("set_external_torque", errors);
+  external_torque_nm_[*joint].store(*torque_nm);
+  return nlohmann::json{{"joint", params_.joints[*joint].name}, {"external_torque_nm", *torque_nm}};
+}
+
+std::optional<std::size_t> SimDriver::joint_argument(JsonReader& reader, const nlohmann::json& args) const {
+  reader.require("joint", "a joint name or index");
+  if (!args.is_object() || !args.contains("joint")) return std::nullopt;
+  const nlohmann::json& value = args.at("joint");
+  const std::size_t joint_count = params_.joints.size();
+  if (value.is_number_integer()) {
+    const auto index = reader.integer("joint", 0, static_cast<std::int64_t>(joint_count) - 1);
+    return index ? std::optional(static_cast<std::size_t>(*index)) : std::nullopt;
+  }
+  if (value.is_string()) {
+    const std::string name = value.get<std::string>();
+    const auto joint = std::find_if(params_.joints.begin(), params_.joints.end(),
+                                    [&](const SimJointParams& candidate) { return candidate.name == name; });
+    if (joint != params_.joints.end()) return static_cast<std::size_t>(joint - params_.joints.begin());
+    reader.error("joint", "no joint is named \"" + name + "\"");
+    return std::nullopt;
+  }
+  reader.error("joint",
+               "expected a joint name or an index 0.." + std::to_string(joint_count - 1) + ", got " + value.dump());
+  return std::nullopt;
+}
+
+Result<nlohmann::json> SimDriver::state(const nlohmann::json& args) const {
+  if (auto error = unexpected_arguments("state", args)) return *error;
+
+  const SimSnapshot snapshot = snapshot_.load();
+  const InjectedFaults injected = injected_faults_.load();
+  nlohmann::json joints = nlohmann::json::array();
+  for (std::size_t i = 0; i < snapshot.joint_count; ++i) {
+    const SimJointSnapshot& joint = snapshot.joints[i];
+    joints.push_back({{"name", params_.joints[i].name},
+                      {"position_rad", joint.position_rad},
+                      {"velocity_rad_s", joint.velocity_rad_s},
+                      {"torque_nm", joint.torque_nm},
+                      {"command", command_kind_name(joint.command)},
+                      {"kp", joint.kp},
+                      {"kd", joint.kd},
+                      {"external_torque_nm", external_torque_nm_[i].load()},
+                      {"zero_offset_rad", zero_offset_rad_[i].load()}});
+  }
+  const bool connected = connected_.load();
+  nlohmann::json fault = nullptr;
+  if (injected.fault.code != 0) fault = {{"code", injected.fault.code}, {"text", injected.fault.text.data()}};
+  return nlohmann::json{{"joints", std::move(joints)},
+                        {"estop", snapshot.estop},
+                        {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
+                        {"feedback", injected.feedback_stopped ? "stopped" : "streaming"},
+                        {"injected_fault", std::move(fault)}};
+}
+
+}  // namespace robotd::sim

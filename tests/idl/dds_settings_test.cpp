@@ -1,0 +1,135 @@
+// DdsSettings → Cyclone XML: by default every packet stays on loopback; a deployment names an
+// interface (by address or by name), enables multicast or lists peers, or brings its own XML.
+#include "wire/dds_settings.hpp"
+
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "wire/participant.hpp"
+#include "wire_test_support.hpp"
+
+namespace robotd::wire {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+TEST(ToCycloneXml, DefaultsKeepTrafficOnLoopback) {
+  const std::string xml = to_cyclone_xml(DdsSettings{});
+  EXPECT_THAT(xml, HasSubstr("<NetworkInterface address=\"127.0.0.1\"/>"));
+  EXPECT_THAT(xml, HasSubstr("<AllowMulticast>false</AllowMulticast>"));
+  EXPECT_THAT(xml, HasSubstr("<Peers><Peer address=\"127.0.0.1\"/></Peers>"));
+  EXPECT_THAT(xml, HasSubstr("<ParticipantIndex>auto</ParticipantIndex>"));
+  EXPECT_THAT(xml, Not(HasSubstr("name=")));
+}
+
+TEST(ToCycloneXml, InterfaceNameIsWrittenAsName) {
+  DdsSettings settings;
+  settings.network_interface = "eth0";
+  const std::string xml = to_cyclone_xml(settings);
+  EXPECT_THAT(xml, HasSubstr("<NetworkInterface name=\"eth0\"/>"));
+  EXPECT_THAT(xml, Not(HasSubstr("address=\"eth0\"")));
+}
+
+TEST(ToCycloneXml, InterfaceAddressIsWrittenAsAddress) {
+  DdsSettings settings;
+  settings.network_interface = "192.168.10.2";
+  EXPECT_THAT(to_cyclone_xml(settings), HasSubstr("<NetworkInterface address=\"192.168.10.2\"/>"));
+}
+
+TEST(ToCycloneXml, EmptyInterfaceLetsCyclonePick) {
+  DdsSettings settings;
+  settings.network_interface.clear();
+  EXPECT_THAT(to_cyclone_xml(settings), Not(HasSubstr("NetworkInterface")));
+}
+
+TEST(ToCycloneXml, MulticastWithoutPeers) {
+  DdsSettings settings;
+  settings.multicast = true;
+  settings.peers.clear();
+  const std::string xml = to_cyclone_xml(settings);
+  EXPECT_THAT(xml, HasSubstr("<AllowMulticast>true</AllowMulticast>"));
+  EXPECT_THAT(xml, Not(HasSubstr("<Peers>")));
+}
+
+TEST(ToCycloneXml, ListsEveryPeer) {
+  DdsSettings settings;
+  settings.peers = {"10.0.0.1", "robot-2.local"};
+  EXPECT_THAT(to_cyclone_xml(settings),
+              HasSubstr("<Peers><Peer address=\"10.0.0.1\"/><Peer address=\"robot-2.local\"/></Peers>"));
+}
+
+TEST(ToCycloneXml, EscapesXmlSpecialCharacters) {
+  DdsSettings settings;
+  settings.network_interface = "a\"b<c>&";
+  EXPECT_THAT(to_cyclone_xml(settings), HasSubstr("name=\"a&quot;b&lt;c&gt;&amp;\""));
+}
+
+TEST(ToCycloneXml, ExplicitXmlOverridesEverything) {
+  DdsSettings settings;
+  settings.network_interface = "eth0";
+  settings.multicast = true;
+  settings.cyclonedds_xml = "<CycloneDDS><Domain id=\"any\"/></CycloneDDS>";
+  EXPECT_EQ(to_cyclone_xml(settings), settings.cyclonedds_xml);
+}
+
+// The environment lets tools follow the daemon's deployment. Each CTest test is its own
+// process and no other thread runs while it changes the environment, so setenv is safe here.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    setenv(name, value, 1);  // NOLINT(concurrency-mt-unsafe)
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+  ~ScopedEnv() {
+    if (old_) {
+      setenv(name_, old_->c_str(), 1);  // NOLINT(concurrency-mt-unsafe)
+    } else {
+      unsetenv(name_);  // NOLINT(concurrency-mt-unsafe)
+    }
+  }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+TEST(DdsSettingsFromEnvironment, ReadsDomainInterfacePeersAndMulticast) {
+  const ScopedEnv domain("ROBOTD_DOMAIN_ID", "42");
+  const ScopedEnv iface("ROBOTD_DDS_INTERFACE", "enp3s0");
+  const ScopedEnv peers("ROBOTD_DDS_PEERS", "10.0.0.1,,10.0.0.2");
+  const ScopedEnv multicast("ROBOTD_DDS_MULTICAST", "1");
+  const DdsSettings settings = dds_settings_from_environment();
+  EXPECT_EQ(settings.domain_id, 42);
+  EXPECT_EQ(settings.network_interface, "enp3s0");
+  EXPECT_EQ(settings.peers, (std::vector<std::string>{"10.0.0.1", "10.0.0.2"}));
+  EXPECT_TRUE(settings.multicast);
+}
+
+TEST(Participant, RejectsDomainIdOutOfRange) {
+  DdsSettings settings;
+  settings.domain_id = 231;
+  const auto participant = Participant::create(settings);
+  ASSERT_FALSE(participant);
+  EXPECT_EQ(participant.error().code, ErrorCode::kInvalidArgument);
+}
+
+TEST(Participant, MissingInterfaceIsAnErrorNamingIt) {
+  const testing::PrivateDomain domain;
+  DdsSettings settings = domain.settings();
+  settings.network_interface = "robotd-none0";
+  const auto participant = Participant::create(settings);
+  ASSERT_FALSE(participant);
+  EXPECT_EQ(participant.error().code, ErrorCode::kTransport);
+  EXPECT_THAT(participant.error().message, HasSubstr("robotd-none0"));
+}
+
+}  // namespace
+}  // namespace robotd::wire
