@@ -30,7 +30,7 @@ struct SessionRequest {
 };
 
 /// One command. Arrays are parallel to motor_ids (empty motor_ids = the session's motors in
-/// order). Which arrays are required depends on the session's mode (see docs/sessions.md).
+/// order). Which arrays are required depends on the session's mode (see docs/design.md, "Sessions").
 struct Command {
   std::vector<std::int32_t> motor_ids;
   std::vector<float> positions;   // rad
