@@ -118,6 +118,12 @@ Result<void> SimDriver::reset_zero(std::span<const int> joints) {
 IoResult SimDriver::read(Feedback& out, FaultInfo& fault) noexcept { return read_at(monotonic_now_ns(), out, fault); }
 
 IoResult SimDriver::read_at(std::int64_t now_ns, Feedback& out, FaultInfo& fault) noexcept {
+  if (const std::int64_t stall_ns = stall_ns_.exchange(0, std::memory_order_acq_rel); stall_ns > 0) {
+    // Injected on purpose: a driver stuck on its bus, which the RT contract forbids, so that
+    // robotd's overrun counting and systemd watchdog can be seen to catch it.
+    const timespec pause{static_cast<time_t>(stall_ns / 1'000'000'000), static_cast<long>(stall_ns % 1'000'000'000)};
+    nanosleep(&pause, nullptr);
+  }
   if (!refresh_link_state(fault)) return IoResult::kDisconnected;
   advance_physics(now_ns);
   if (const IoResult status = injected_link_status(fault); status != IoResult::kOk) return status;

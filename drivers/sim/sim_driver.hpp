@@ -99,6 +99,7 @@ class SimDriver final : public driver::Driver {
   Result<nlohmann::json> inject_disconnect(const nlohmann::json& args);
   Result<nlohmann::json> raise_fault(const nlohmann::json& args);
   Result<nlohmann::json> set_external_torque(const nlohmann::json& args);
+  Result<nlohmann::json> stall(const nlohmann::json& args);
   Result<nlohmann::json> state(const nlohmann::json& args) const;
   std::optional<std::size_t> joint_argument(JsonReader& reader, const nlohmann::json& args) const;
   template <class Change>
@@ -114,6 +115,7 @@ class SimDriver final : public driver::Driver {
   std::atomic<std::uint64_t> link_generation_{0};
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
+  std::atomic<std::int64_t> stall_ns_{0};  // the next read() blocks this long (a hung bus)
   SeqLock<InjectedFaults> injected_faults_;
   std::mutex injected_faults_writer_mutex_;  // serialises non-RT writers; never taken by the RT thread
   SeqLock<SimSnapshot> snapshot_;

@@ -21,7 +21,7 @@ struct OpSpec {
   std::string_view help;
 };
 
-constexpr std::array<OpSpec, 5> kOps{{
+constexpr std::array<OpSpec, 6> kOps{{
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
     {"disconnect", R"({}: simulate a lost link; read()/write() report it and the joints damp until recover())"},
     {"raise_fault",
@@ -29,6 +29,7 @@ constexpr std::array<OpSpec, 5> kOps{{
      R"(damp until recover())"},
     {"set_external_torque",
      R"({"joint": name or index, "torque_nm": number}: set the constant load on a joint in N·m (e.g. gravity))"},
+    {"stall", R"({"ms": 1..10000}: the next read() blocks this long, like a driver hung on its bus (fault injection))"},
     {"state", R"({}: per joint position (rad), velocity (rad/s), applied torque (N·m), command kind, applied kp, kd; )"
               R"(e-stop, link, feedback and injected fault)"},
 }};
@@ -132,6 +133,7 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
     if (op == "disconnect") return inject_disconnect(arguments);
     if (op == "raise_fault") return raise_fault(arguments);
     if (op == "set_external_torque") return set_external_torque(arguments);
+    if (op == "stall") return stall(arguments);
     if (op == "state") return state(arguments);
   } catch (const std::exception& e) {
     return make_error(ErrorCode::kInvalidArgument, op + ": " + e.what());
@@ -189,6 +191,17 @@ Result<nlohmann::json> SimDriver::set_external_torque(const nlohmann::json& args
   if (!errors.empty()) return invalid_arguments("set_external_torque", errors);
   external_torque_nm_[*joint].store(*torque_nm);
   return nlohmann::json{{"joint", params_.joints[*joint].name}, {"external_torque_nm", *torque_nm}};
+}
+
+Result<nlohmann::json> SimDriver::stall(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  reader.require("ms", "an integer 1..10000 (milliseconds)");
+  const auto ms = reader.integer("ms", 1, 10'000);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("stall", errors);
+  stall_ns_.store(*ms * 1'000'000, std::memory_order_release);
+  return nlohmann::json{{"stall_ms", *ms}};
 }
 
 std::optional<std::size_t> SimDriver::joint_argument(JsonReader& reader, const nlohmann::json& args) const {
