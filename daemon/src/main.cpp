@@ -1,9 +1,9 @@
 // robotd: the real-time robot middleware daemon. See README.md and docs/.
-#include <spdlog/spdlog.h>
-
-#include <CLI/CLI.hpp>
 #include <csignal>
 #include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
 
 #include "app/daemon.hpp"
 #include "app/systemd_notifier.hpp"
@@ -27,8 +27,9 @@ int wait_for_stop_signal() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"robotd — real-time robot middleware: one DDS interface, exclusive control sessions, "
-               "vendor drivers as plugins"};
+  CLI::App app{
+      "robotd — real-time robot middleware: one DDS interface, exclusive control sessions, "
+      "vendor drivers as plugins"};
   std::string config_path = ROBOTD_DEFAULT_CONFIG;
   bool check_only = false;
   std::string log_level;

@@ -128,11 +128,28 @@ class ServiceClient {
 
   /// Sends `request` and waits for its reply. Never waits longer than `timeout` in total.
   Result<Response> call(const Request& request, std::chrono::milliseconds timeout) {
-    const std::lock_guard lock(mutex_);
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    if (!wait_until_matched(deadline)) {
+    return call_until(request, deadline, deadline, timeout, timeout);
+  }
+
+  /// For slow operations: gives up after `discovery_timeout` if no robotd serves this service,
+  /// else waits up to `reply_timeout` for the reply once the request is sent.
+  Result<Response> call(const Request& request, std::chrono::milliseconds discovery_timeout,
+                        std::chrono::milliseconds reply_timeout) {
+    const auto now = std::chrono::steady_clock::now();
+    return call_until(request, now + discovery_timeout, std::chrono::steady_clock::time_point::max(), discovery_timeout,
+                      reply_timeout);
+  }
+
+ private:
+  /// `reply_deadline` max() means: `reply_timeout` from when the request is sent.
+  Result<Response> call_until(const Request& request, std::chrono::steady_clock::time_point match_deadline,
+                              std::chrono::steady_clock::time_point reply_deadline,
+                              std::chrono::milliseconds discovery_timeout, std::chrono::milliseconds reply_timeout) {
+    const std::lock_guard lock(mutex_);
+    if (!wait_until_matched(match_deadline)) {
       return make_error(ErrorCode::kNotAvailable, "no robotd answers /" + name_ + " on this DDS domain within " +
-                                                      std::to_string(timeout.count()) +
+                                                      std::to_string(discovery_timeout.count()) +
                                                       " ms: is robotd running, with the same domain id and "
                                                       "network interface?");
     }
@@ -143,10 +160,12 @@ class ServiceClient {
     sample.sequence_number = ++sequence_;
     const dds_return_t rc = dds_write(writer_.get(), &sample);
     if (rc < 0) return make_error(ErrorCode::kTransport, dds_error(("send a /" + name_ + " request").c_str(), rc));
-    return wait_for_reply(sample.sequence_number, deadline, timeout);
+    if (reply_deadline == std::chrono::steady_clock::time_point::max()) {
+      reply_deadline = std::chrono::steady_clock::now() + reply_timeout;
+    }
+    return wait_for_reply(sample.sequence_number, reply_deadline, reply_timeout);
   }
 
- private:
   ServiceClient(dds_entity_t participant, std::string name, Entity request_topic, Entity reply_topic, Entity writer,
                 Entity reader, std::uint64_t guid)
       : name_(std::move(name)),

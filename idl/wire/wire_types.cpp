@@ -337,10 +337,15 @@ void Wire<RequestControlResponse>::to_c(const RequestControlResponse& in, C& out
   out.uuid = c_string(in.uuid);
   view_sequence(out.motor_ids, in.motor_ids);
   out.applied_behavior = enum_to_c(in.applied_behavior);
+  out.device = c_string(in.device);
 }
 RequestControlResponse Wire<RequestControlResponse>::from_c(const C& in) {
-  return RequestControlResponse{in.success, copy_string(in.message), copy_string(in.uuid),
-                                copy_sequence<std::int32_t>(in.motor_ids), enum_from_c<Behavior>(in.applied_behavior)};
+  return RequestControlResponse{in.success,
+                                copy_string(in.message),
+                                copy_string(in.uuid),
+                                copy_sequence<std::int32_t>(in.motor_ids),
+                                enum_from_c<Behavior>(in.applied_behavior),
+                                copy_string(in.device)};
 }
 
 const dds_topic_descriptor_t& Wire<ReleaseControlRequest>::descriptor() {

@@ -1,10 +1,10 @@
 // End to end: starting and stopping robotd (issue test 7), and what it says when it cannot start.
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <cmath>
 #include <mutex>
 #include <thread>
+
+#include <gtest/gtest.h>
 
 #include "robotd_fixture.hpp"
 

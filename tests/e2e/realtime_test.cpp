@@ -1,11 +1,11 @@
 // End to end: the RT rule, proven on the running daemon (issue test 8), and non-RT work that
 // must not stall the loop.
-#include <gtest/gtest.h>
-
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <thread>
+
+#include <gtest/gtest.h>
 
 #include "robotd_fixture.hpp"
 
@@ -60,11 +60,12 @@ TEST_F(RealtimeTest, LoopThreadsMakeNoHeapAllocationsWhileCommandsStream) {
   EXPECT_EQ(arm.loop.rt_heap_allocations, 0) << "the arm's RT loop allocated";
   ASSERT_GE(humanoid.loop.rt_heap_allocations, 0);
   EXPECT_EQ(humanoid.loop.rt_heap_allocations, 0) << "the humanoid's RT loop allocated";
-  std::printf("[ measured ] RT heap allocations after warm-up: arm %lld over %llu ticks, humanoid %lld; "
-              "%llu commands accepted\n",
-              static_cast<long long>(arm.loop.rt_heap_allocations), static_cast<unsigned long long>(arm.loop.ticks),
-              static_cast<long long>(humanoid.loop.rt_heap_allocations),
-              static_cast<unsigned long long>(arm.commands.accepted));
+  std::printf(
+      "[ measured ] RT heap allocations after warm-up: arm %lld over %llu ticks, humanoid %lld; "
+      "%llu commands accepted\n",
+      static_cast<long long>(arm.loop.rt_heap_allocations), static_cast<unsigned long long>(arm.loop.ticks),
+      static_cast<long long>(humanoid.loop.rt_heap_allocations),
+      static_cast<unsigned long long>(arm.commands.accepted));
 }
 
 // DESIGN.md: non-RT work never stalls the loop. Hammer every service while the arm streams at
@@ -81,8 +82,10 @@ TEST_F(RealtimeTest, HammeringServicesDoesNotStallTheLoop) {
 
   std::atomic<bool> hammering{true};
   std::atomic<int> calls{0};
+  constexpr int kHammers = 3;
   std::vector<std::thread> hammers;
-  for (int h = 0; h < 3; ++h) {
+  hammers.reserve(kHammers);
+  for (int h = 0; h < kHammers; ++h) {
     hammers.emplace_back([&, h] {
       Client hammer = make_client("hammer" + std::to_string(h));
       while (hammering.load()) {
@@ -98,12 +101,12 @@ TEST_F(RealtimeTest, HammeringServicesDoesNotStallTheLoop) {
   for (auto& thread : hammers) thread.join();
   const DeviceStatus hammered = device_status();
 
-  std::printf("[ measured ] %d service calls in 3 s; loop execution p99 %.1f µs quiet vs %.1f µs hammered; "
-              "execution max %.1f µs; wake latency p99 %.1f vs %.1f µs; overruns %llu -> %llu\n",
-              calls.load(), quiet.loop.execution_p99_us, hammered.loop.execution_p99_us, hammered.loop.execution_max_us,
-              quiet.loop.wake_latency_p99_us, hammered.loop.wake_latency_p99_us,
-              static_cast<unsigned long long>(quiet.loop.overruns),
-              static_cast<unsigned long long>(hammered.loop.overruns));
+  std::printf(
+      "[ measured ] %d service calls in 3 s; loop execution p99 %.1f µs quiet vs %.1f µs hammered; "
+      "execution max %.1f µs; wake latency p99 %.1f vs %.1f µs; overruns %llu -> %llu\n",
+      calls.load(), quiet.loop.execution_p99_us, hammered.loop.execution_p99_us, hammered.loop.execution_max_us,
+      quiet.loop.wake_latency_p99_us, hammered.loop.wake_latency_p99_us,
+      static_cast<unsigned long long>(quiet.loop.overruns), static_cast<unsigned long long>(hammered.loop.overruns));
   EXPECT_GT(calls.load(), 300);
   // The tick does a few µs of work; a lock or allocation shared with the service side would
   // stretch it by the length of a service call (hundreds of µs).

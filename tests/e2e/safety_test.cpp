@@ -1,11 +1,11 @@
 // End to end through a real robotd process: what must never reach a motor (issue tests 4, 5),
 // device faults and recovery, the black box.
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <thread>
+
+#include <gtest/gtest.h>
 
 #include "robotd_fixture.hpp"
 #include "session/session_uuid.hpp"

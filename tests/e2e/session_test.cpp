@@ -1,9 +1,9 @@
 // End to end through a real robotd process: sessions (issue tests 1, 2, 3, 6).
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <cmath>
 #include <thread>
+
+#include <gtest/gtest.h>
 
 #include "robotd_fixture.hpp"
 
@@ -58,12 +58,12 @@ TEST_F(SessionTest, AcquireMoveReadTargetBackRelease) {
   EXPECT_GT(status.commands.accepted, 0U);
   EXPECT_EQ(status.commands.rejected_total(), 0U);
   EXPECT_GT(status.loop.window_ticks, 500U);
-  std::printf("[ measured ] arrived in %.2f s; loop wake latency p50 %.1f µs, p99 %.1f µs, max %.1f µs; "
-              "execution p50 %.1f µs, p99 %.1f µs; overruns %llu over %llu ticks; realtime %s\n",
-              seconds, status.loop.wake_latency_p50_us, status.loop.wake_latency_p99_us,
-              status.loop.wake_latency_max_us, status.loop.execution_p50_us, status.loop.execution_p99_us,
-              static_cast<unsigned long long>(status.loop.overruns),
-              static_cast<unsigned long long>(status.loop.ticks), status.loop.realtime ? "yes" : "no");
+  std::printf(
+      "[ measured ] arrived in %.2f s; loop wake latency p50 %.1f µs, p99 %.1f µs, max %.1f µs; "
+      "execution p50 %.1f µs, p99 %.1f µs; overruns %llu over %llu ticks; realtime %s\n",
+      seconds, status.loop.wake_latency_p50_us, status.loop.wake_latency_p99_us, status.loop.wake_latency_max_us,
+      status.loop.execution_p50_us, status.loop.execution_p99_us, static_cast<unsigned long long>(status.loop.overruns),
+      static_cast<unsigned long long>(status.loop.ticks), status.loop.realtime ? "yes" : "no");
 
   auto released = session.value().release(Behavior::kKeep);
   ASSERT_TRUE(released) << released.error().message;

@@ -1,16 +1,15 @@
 // End to end: robotd speaks sd_notify to the socket systemd would give it. READY once up,
 // WATCHDOG pings at half of WatchdogSec while every loop ticks (and none while one hangs),
 // STOPPING on SIGTERM. A datagram socket stands in for systemd.
-#include <sys/socket.h>
-#include <sys/un.h>
-#include <unistd.h>
-
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <optional>
 #include <string>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "robotd_fixture.hpp"
 

@@ -335,10 +335,11 @@ TEST(WireLayout, ServiceServerEchoesTheRequestHeaderInItsReply) {
   response.uuid = "u";
   response.motor_ids = {1, 2};
   response.applied_behavior = Behavior::kDamping;
+  response.device = "arm";
   ASSERT_TRUE(server.value()->reply(*received, response));
 
   Xcdr1 expected;
-  expected.u64(kGuid).i64(kSequence).boolean(true).string("ok").string("u").count(2).i32(1).i32(2).i32(1);
+  expected.u64(kGuid).i64(kSequence).boolean(true).string("ok").string("u").count(2).i32(1).i32(2).i32(1).string("arm");
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(replies.reader.get())));
 }
 

@@ -1,10 +1,11 @@
 // A client in its own process for tests that kill a client: acquires a session, prints
 // "uuid <uuid>", then streams position commands holding the arm at its current position
 // (or --position) at --rate Hz until it is killed.
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <thread>
+
+#include <CLI/CLI.hpp>
 
 #include "robotd/client.hpp"
 
@@ -46,8 +47,8 @@ int main(int argc, char** argv) {
   }
   std::printf("uuid %s\n", session.value().uuid().c_str());
   std::fflush(stdout);
-  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(1.0 / rate_hz));
+  const auto period =
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
   auto next = std::chrono::steady_clock::now();
   while (true) {
     (void)session.value().send_positions(hold);

@@ -5,8 +5,8 @@
 namespace robotd::testing {
 
 void RobotdTest::start_robotd(const nlohmann::json& config, std::vector<std::string> environment) {
-  robotd_ = std::make_unique<RobotdProcess>(config.is_null() ? sim_arm_config(domain_.id()) : config,
-                                            std::move(environment));
+  robotd_ =
+      std::make_unique<RobotdProcess>(config.is_null() ? sim_arm_config(domain_.id()) : config, std::move(environment));
   auto client = Client::connect(client_options(domain_.id()));
   ASSERT_TRUE(client) << client.error().message;
   client_.emplace(std::move(client.value()));

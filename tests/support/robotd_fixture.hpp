@@ -1,12 +1,12 @@
 // GoogleTest fixture: a robotd process on a private DDS domain and a client connected to it.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "robotd/client.hpp"
 #include "robotd_process.hpp"

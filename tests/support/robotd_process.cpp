@@ -1,16 +1,15 @@
 #include "robotd_process.hpp"
 
+#include <cstdlib>
 #include <fcntl.h>
+#include <fstream>
 #include <poll.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <sys/wait.h>
 #include <thread>
+#include <unistd.h>
 
 #ifndef ROBOTD_BINARY
 #error "ROBOTD_BINARY must point at the robotd executable under test"
@@ -31,6 +30,7 @@ std::string temp_path(const std::string& stem) {
 
 std::vector<char*> c_strings(std::vector<std::string>& strings) {
   std::vector<char*> out;
+  out.reserve(strings.size() + 1);
   for (auto& s : strings) out.push_back(s.data());
   out.push_back(nullptr);
   return out;
@@ -69,8 +69,7 @@ nlohmann::json sim_arm_config(int domain, const nlohmann::json& params, const nl
                            {"params", params.is_null() ? sim_arm_params() : params}};
   device.update(device_overrides);
   return {{"daemon", {{"log_level", "info"}, {"status_rate_hz", 20}, {"session_status_period_ms", 200}}},
-          {"dds",
-           {{"domain_id", domain}, {"interface", "127.0.0.1"}, {"multicast", false}, {"peers", {"127.0.0.1"}}}},
+          {"dds", {{"domain_id", domain}, {"interface", "127.0.0.1"}, {"multicast", false}, {"peers", {"127.0.0.1"}}}},
           {"devices", {device}}};
 }
 
@@ -180,7 +179,8 @@ std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds tim
       buffer_.erase(0, newline + 1);
       return line;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return std::nullopt;
     pollfd fd{stdout_fd_, POLLIN, 0};
     if (poll(&fd, 1, static_cast<int>(left.count())) <= 0) return std::nullopt;

@@ -2,11 +2,10 @@
 // domain, its output captured to a log, stopped with SIGTERM (or killed) at the end.
 #pragma once
 
-#include <sys/types.h>
-
 #include <chrono>
 #include <optional>
 #include <string>
+#include <sys/types.h>
 #include <vector>
 
 #include <nlohmann/json.hpp>

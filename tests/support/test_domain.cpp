@@ -1,11 +1,10 @@
 #include "test_domain.hpp"
 
 #include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
 #include <stdexcept>
 #include <string>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace robotd::testing {
 

@@ -2,11 +2,10 @@
 //
 //   build/bin/robotd --config config/robotd.json &      # robotd with the simulated robots
 //   build/bin/robotd_example_move_arm                     # this program
-#include <robotd/client.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <robotd/client.hpp>
 #include <thread>
 #include <vector>
 

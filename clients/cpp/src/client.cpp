@@ -53,7 +53,7 @@ ClientOptions ClientOptions::from_environment() {
   return options;
 }
 
-Result<Client> Client::connect(ClientOptions options) {
+Result<Client> Client::connect(const ClientOptions& options) {
   auto core = detail::ClientCore::create(options);
   if (!core) return core.error();
   return Client(std::move(core.value()));
@@ -67,7 +67,8 @@ Client::~Client() = default;
 const ClientOptions& Client::options() const { return core_->options; }
 
 Result<std::vector<DeviceInfo>> Client::list_devices() {
-  auto response = core_->list_devices->call(ListDevicesRequest{core_->options.node_name}, core_->options.service_timeout);
+  auto response =
+      core_->list_devices->call(ListDevicesRequest{core_->options.node_name}, core_->options.service_timeout);
   if (!response) return response.error();
   return std::move(response.value().devices);
 }
@@ -85,7 +86,7 @@ Result<Session> Client::request_control(const SessionRequest& request) {
   auto response = core_->request_control->call(wire_request, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/request_control", response.value().message);
-  return Session(core_, response.value().uuid, request, response.value().motor_ids,
+  return Session(core_, response.value().uuid, response.value().device, request, response.value().motor_ids,
                  response.value().applied_behavior);
 }
 
@@ -105,35 +106,36 @@ Result<GetAvailableMotorsResponse> Client::available_motors(const std::string& d
   return response;
 }
 
-Result<void> Client::estop(const std::string& device, const std::string& reason) {
-  auto response = core_->estop->call(EstopRequest{core_->options.node_name, device, true, reason},
-                                     core_->options.service_timeout);
+Result<EstopResponse> Client::estop(const std::string& device, const std::string& reason) {
+  auto response =
+      core_->estop->call(EstopRequest{core_->options.node_name, device, true, reason}, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/estop", response.value().message);
-  return {};
+  return response;
 }
 
-Result<void> Client::reset_estop(const std::string& device) {
-  auto response = core_->estop->call(EstopRequest{core_->options.node_name, device, false, ""},
-                                     core_->options.service_timeout);
+Result<EstopResponse> Client::reset_estop(const std::string& device) {
+  auto response =
+      core_->estop->call(EstopRequest{core_->options.node_name, device, false, ""}, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/estop", response.value().message);
-  return {};
+  return response;
 }
 
 Result<void> Client::reset_zero(const std::string& device, const std::vector<std::int32_t>& motor_ids,
                                 std::chrono::milliseconds timeout) {
-  auto response = core_->reset_zero->call(
-      ResetZeroRequest{device, motor_ids, static_cast<std::int32_t>(timeout.count())},
-      timeout + core_->options.service_timeout);
+  auto response =
+      core_->reset_zero->call(ResetZeroRequest{device, motor_ids, static_cast<std::int32_t>(timeout.count())},
+                              core_->options.service_timeout, timeout + core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/reset_zero", response.value().message);
   return {};
 }
 
-Result<std::string> Client::device_call(const std::string& device, const std::string& op,
-                                        const std::string& args_json, std::chrono::milliseconds timeout) {
-  auto response = core_->device_call->call(DeviceCallRequest{device, op, args_json}, timeout);
+Result<std::string> Client::device_call(const std::string& device, const std::string& op, const std::string& args_json,
+                                        std::chrono::milliseconds timeout) {
+  auto response =
+      core_->device_call->call(DeviceCallRequest{device, op, args_json}, core_->options.service_timeout, timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/device_call " + op, response.value().message);
   return std::move(response.value().result_json);
@@ -175,9 +177,8 @@ Result<DeviceStatus> Client::next_device_status(const std::string& device, std::
     if (device.empty() || status.device == device) first.offer(status);
   });
   if (auto value = first.wait(timeout)) return std::move(*value);
-  return make_error(ErrorCode::kTimeout, "no /device_status sample" +
-                                             (device.empty() ? "" : " for '" + device + "'") + " within " +
-                                             std::to_string(timeout.count()) + " ms");
+  return make_error(ErrorCode::kTimeout, "no /device_status sample" + (device.empty() ? "" : " for '" + device + "'") +
+                                             " within " + std::to_string(timeout.count()) + " ms");
 }
 
 Result<SessionStatus> Client::session_status(std::chrono::milliseconds timeout) {

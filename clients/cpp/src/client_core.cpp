@@ -29,13 +29,13 @@ Result<std::shared_ptr<ClientCore>> ClientCore::create(const ClientOptions& opti
   if (!participant) return participant.error();
 
   std::shared_ptr<ClientCore> core(new ClientCore(options, std::move(participant.value())));
-  for (auto result : {make_client(core->participant, "request_control", core->request_control),
-                      make_client(core->participant, "release_control", core->release_control),
-                      make_client(core->participant, "get_available_motors", core->available_motors),
-                      make_client(core->participant, "reset_zero", core->reset_zero),
-                      make_client(core->participant, "estop", core->estop),
-                      make_client(core->participant, "list_devices", core->list_devices),
-                      make_client(core->participant, "device_call", core->device_call)}) {
+  for (const auto& result : {make_client(core->participant, "request_control", core->request_control),
+                             make_client(core->participant, "release_control", core->release_control),
+                             make_client(core->participant, "get_available_motors", core->available_motors),
+                             make_client(core->participant, "reset_zero", core->reset_zero),
+                             make_client(core->participant, "estop", core->estop),
+                             make_client(core->participant, "list_devices", core->list_devices),
+                             make_client(core->participant, "device_call", core->device_call)}) {
     if (!result) return result.error();
   }
   const auto qos = wire::reliable_qos(kCommandHistoryDepth);

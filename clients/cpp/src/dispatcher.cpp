@@ -42,8 +42,7 @@ void Dispatcher::run() {
   constexpr std::size_t kMaxTriggered = 32;
   std::array<dds_attach_t, kMaxTriggered> triggered{};
   while (!stopping_.load()) {
-    const dds_return_t count =
-        dds_waitset_wait(waitset_.get(), triggered.data(), triggered.size(), DDS_MSECS(200));
+    const dds_return_t count = dds_waitset_wait(waitset_.get(), triggered.data(), triggered.size(), DDS_MSECS(200));
     if (count <= 0) continue;
     const std::lock_guard lock(mutex_);
     for (dds_return_t i = 0; i < count && static_cast<std::size_t>(i) < triggered.size(); ++i) {

@@ -15,11 +15,11 @@ std::int64_t clock_ns(clockid_t clock) {
 
 }  // namespace
 
-Session::Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, const SessionRequest& request,
-                 std::vector<std::int32_t> motor_ids, Behavior applied_behavior)
+Session::Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, std::string device,
+                 const SessionRequest& request, std::vector<std::int32_t> motor_ids, Behavior applied_behavior)
     : core_(std::move(core)),
       uuid_(std::move(uuid)),
-      device_(request.device),
+      device_(std::move(device)),
       motor_ids_(std::move(motor_ids)),
       mode_(request.mode),
       applied_behavior_(applied_behavior),

@@ -67,8 +67,7 @@ Result<void> Daemon::start_devices() {
     }
     const auto& model = device->model();
     spdlog::info("device '{}': driver {} {} ({}), {} joints, {} Hz loop; {}", model.name, model.driver,
-                 model.driver_version, model.model, model.joint_count(), model.rate_hz,
-                 device->thread_start().report);
+                 model.driver_version, model.model, model.joint_count(), model.rate_hz, device->thread_start().report);
     if (!device->thread_start().realtime && device_config.realtime != rt::RealtimePolicy::kOff) {
       spdlog::warn("device '{}': loop is NOT real-time: {}", model.name, device->thread_start().report);
     }
@@ -95,7 +94,8 @@ Result<void> Daemon::start_dds() {
   auto imu = wire::TopicWriter<Imu>::create(*participant_, wire::kImuTopic, state_qos.get());
   if (!imu) return imu.error();
   imu_ = std::make_unique<wire::TopicWriter<Imu>>(std::move(imu.value()));
-  auto device_status = wire::TopicWriter<DeviceStatus>::create(*participant_, wire::kDeviceStatusTopic, state_qos.get());
+  auto device_status =
+      wire::TopicWriter<DeviceStatus>::create(*participant_, wire::kDeviceStatusTopic, state_qos.get());
   if (!device_status) return device_status.error();
   device_status_ = std::make_unique<wire::TopicWriter<DeviceStatus>>(std::move(device_status.value()));
 
@@ -120,20 +120,20 @@ Result<void> Daemon::start_dds() {
 
   const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get()};
   for (std::size_t i = 0; i < devices_.size(); ++i) {
-    publishers_.push_back(std::make_unique<dds::StatePublisher>(*devices_[i], i, writers, *sessions_,
-                                                                intake_->counters(i), *black_boxes_[i],
-                                                                config_.daemon));
+    publishers_.push_back(std::make_unique<dds::StatePublisher>(
+        *devices_[i], i, writers, *sessions_, intake_->counters(i), *black_boxes_[i], config_.daemon));
     publishers_.back()->start();
   }
   session_status_->start(*sessions_);
   if (auto started = intake_->start(); !started) return started;
   services_->start();
-  spdlog::info("DDS: domain {}, {}", config_.dds.domain_id,
-               config_.dds.cyclonedds_xml.empty()
-                   ? "interface " + (config_.dds.network_interface.empty() ? std::string("(auto)")
-                                                                             : config_.dds.network_interface) +
-                         (config_.dds.multicast ? ", multicast" : ", no multicast")
-                   : std::string("custom Cyclone DDS XML"));
+  spdlog::info(
+      "DDS: domain {}, {}", config_.dds.domain_id,
+      config_.dds.cyclonedds_xml.empty()
+          ? "interface " +
+                (config_.dds.network_interface.empty() ? std::string("(auto)") : config_.dds.network_interface) +
+                (config_.dds.multicast ? ", multicast" : ", no multicast")
+          : std::string("custom Cyclone DDS XML"));
   return {};
 }
 

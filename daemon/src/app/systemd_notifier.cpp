@@ -1,17 +1,15 @@
 #include "app/systemd_notifier.hpp"
 
+#include <chrono>
+
 #include <spdlog/spdlog.h>
 #include <systemd/sd-daemon.h>
-
-#include <chrono>
 
 namespace robotd::app {
 
 SystemdNotifier::~SystemdNotifier() { stop_watchdog(); }
 
-void SystemdNotifier::ready(const std::string& status) {
-  sd_notifyf(0, "READY=1\nSTATUS=%s", status.c_str());
-}
+void SystemdNotifier::ready(const std::string& status) { sd_notifyf(0, "READY=1\nSTATUS=%s", status.c_str()); }
 
 void SystemdNotifier::stopping() { sd_notify(0, "STOPPING=1\nSTATUS=stopping: bringing devices to a safe stop"); }
 

@@ -1,21 +1,18 @@
 #include "config/config.hpp"
 
-#include <unistd.h>
-
 #include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
+#include <unistd.h>
 
 #include "robotd/driver/json_reader.hpp"
 
 namespace robotd::config {
 namespace {
 
-const std::vector<std::string> kBehaviors{"KEEP", "DAMPING", "ZERO_TORQUE"};
-
 Behavior behavior_or(JsonReader& reader, std::string_view key, Behavior fallback) {
-  const auto text = reader.string(key, kBehaviors);
+  const auto text = reader.string(key, {"KEEP", "DAMPING", "ZERO_TORQUE"});
   return text ? *parse_behavior(*text) : fallback;
 }
 
@@ -30,10 +27,10 @@ void read_daemon(JsonReader& reader, DaemonConfig& daemon) {
       reader.string_or("log_level", daemon.log_level, {"trace", "debug", "info", "warn", "error", "critical", "off"});
   daemon.plugin_dirs = reader.string_array("plugin_dirs").value_or(std::vector<std::string>{});
   daemon.status_rate_hz = static_cast<int>(reader.integer_or("status_rate_hz", daemon.status_rate_hz, 1, 100));
-  daemon.session_status_period_ms = static_cast<int>(
-      reader.integer_or("session_status_period_ms", daemon.session_status_period_ms, 100, 60'000));
-  daemon.min_session_timeout_ms = static_cast<std::int32_t>(
-      reader.integer_or("min_session_timeout_ms", daemon.min_session_timeout_ms, 1, 60'000));
+  daemon.session_status_period_ms =
+      static_cast<int>(reader.integer_or("session_status_period_ms", daemon.session_status_period_ms, 100, 60'000));
+  daemon.min_session_timeout_ms =
+      static_cast<std::int32_t>(reader.integer_or("min_session_timeout_ms", daemon.min_session_timeout_ms, 1, 60'000));
   daemon.max_session_timeout_ms = static_cast<std::int32_t>(
       reader.integer_or("max_session_timeout_ms", daemon.max_session_timeout_ms, 10, 86'400'000));
   daemon.stats_window_ticks =
@@ -84,7 +81,8 @@ DeviceConfig read_device(JsonReader& reader, int cpu_count) {
   reader.require("driver", "a driver plugin name, e.g. \"sim\"");
   device.name = reader.string_or("name", "");
   if (!device.name.empty() && !is_identifier(device.name)) {
-    reader.error("name", "expected a name of letters, digits and _ starting with a letter, got \"" + device.name + "\"");
+    reader.error("name",
+                 "expected a name of letters, digits and _ starting with a letter, got \"" + device.name + "\"");
   }
   device.driver = reader.string_or("driver", "");
   if (!device.driver.empty() && !is_identifier(device.driver)) {
@@ -148,7 +146,10 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
     }
     config.devices.push_back(std::move(device));
   }
-  if (config.devices.empty() && root.has("devices")) root.error("devices", "must list at least one device");
+  if (config.devices.empty() && document->is_object() && document->contains("devices") &&
+      (*document)["devices"].is_array()) {
+    root.error("devices", "must list at least one device");
+  }
   root.finish();
 
   if (!errors.empty()) {
@@ -162,7 +163,8 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
 Result<Config> load_config_file(const std::string& path) {
   std::ifstream file(path);
   if (!file) {
-    return make_error(ErrorCode::kInvalidArgument, "cannot read config file '" + path + "' (does it exist, is it readable?)");
+    return make_error(ErrorCode::kInvalidArgument,
+                      "cannot read config file '" + path + "' (does it exist, is it readable?)");
   }
   std::ostringstream text;
   text << file.rdbuf();

@@ -35,15 +35,24 @@ bool within_or_clamped(float& value, double low, double high, LimitPolicy policy
 
 const char* to_string(Rejection rejection) {
   switch (rejection) {
-    case Rejection::kUnknownSession: return "unknown_session";
-    case Rejection::kWrongDevice: return "wrong_device";
-    case Rejection::kNotOwner: return "not_owner";
-    case Rejection::kUnknownMotor: return "unknown_motor";
-    case Rejection::kMalformed: return "malformed";
-    case Rejection::kNonFinite: return "non_finite";
-    case Rejection::kOutOfRange: return "out_of_range";
-    case Rejection::kEstop: return "estop";
-    case Rejection::kFault: return "fault";
+    case Rejection::kUnknownSession:
+      return "unknown_session";
+    case Rejection::kWrongDevice:
+      return "wrong_device";
+    case Rejection::kNotOwner:
+      return "not_owner";
+    case Rejection::kUnknownMotor:
+      return "unknown_motor";
+    case Rejection::kMalformed:
+      return "malformed";
+    case Rejection::kNonFinite:
+      return "non_finite";
+    case Rejection::kOutOfRange:
+      return "out_of_range";
+    case Rejection::kEstop:
+      return "estop";
+    case Rejection::kFault:
+      return "fault";
   }
   return "unknown";
 }
@@ -52,8 +61,8 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
                          ValidatedCommand& out) {
   out = ValidatedCommand{};
   if (!command.device.empty() && command.device != session.device) {
-    return reject(Rejection::kWrongDevice, "command names device '" + command.device + "' but session " +
-                                               command.uuid + " is on device '" + std::string(session.device) + "'");
+    return reject(Rejection::kWrongDevice, "command names device '" + command.device + "' but session " + command.uuid +
+                                               " is on device '" + std::string(session.device) + "'");
   }
 
   const std::size_t count = command.motor_ids.size();
@@ -77,8 +86,8 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
     return {};
   }
   if (count > model.joint_count()) {
-    return reject(Rejection::kMalformed, "motor_ids names " + std::to_string(count) + " motors; device '" +
-                                             model.name + "' has " + std::to_string(model.joint_count()));
+    return reject(Rejection::kMalformed, "motor_ids names " + std::to_string(count) + " motors; device '" + model.name +
+                                             "' has " + std::to_string(model.joint_count()));
   }
   for (const auto& array : arrays) {
     if (array.values->empty() && array.required) {
@@ -107,8 +116,8 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
     for (const auto id : command.motor_ids) {
       if (!session.motors.test(static_cast<std::size_t>(id))) foreign.push_back(id);
     }
-    return reject(Rejection::kNotOwner,
-                  "session " + command.uuid + " does not own motor(s) " + join_ids(foreign) + " of '" + model.name + "'");
+    return reject(Rejection::kNotOwner, "session " + command.uuid + " does not own motor(s) " + join_ids(foreign) +
+                                            " of '" + model.name + "'");
   }
   for (const auto& array : arrays) {
     for (std::size_t i = 0; i < array.values->size(); ++i) {
@@ -126,8 +135,8 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
     update.joint = static_cast<std::uint8_t>(joint);
     const auto out_of_range = [&](const char* field, float value, double low, double high) {
       std::ostringstream text;
-      text << field << " " << value << " for motor " << joint << " ('" << model.joint_names[joint]
-           << "') is outside " << low << ".." << high;
+      text << field << " " << value << " for motor " << joint << " ('" << model.joint_names[joint] << "') is outside "
+           << low << ".." << high;
       return reject(Rejection::kOutOfRange, text.str());
     };
     const auto take = [&](const std::vector<float>& values, TargetField field, float& slot, const char* name,
@@ -148,15 +157,15 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
                       limits.velocity_max_rad_s)) {
       return *v;
     }
-    if (auto v = take(command.torques, kHasTorque, update.torque, "torque", -limits.effort_max_nm,
-                      limits.effort_max_nm)) {
+    if (auto v =
+            take(command.torques, kHasTorque, update.torque, "torque", -limits.effort_max_nm, limits.effort_max_nm)) {
       return *v;
     }
     // Negative gains are never clamped: they are a sign error, not an overshoot.
     for (const auto& [values, name] : {std::pair{&command.kp, "kp"}, std::pair{&command.kd, "kd"}}) {
       if (!values->empty() && (*values)[i] < 0) {
-        return reject(Rejection::kOutOfRange, std::string(name) + " for motor " + std::to_string(joint) +
-                                                  " is negative; gains must be >= 0");
+        return reject(Rejection::kOutOfRange,
+                      std::string(name) + " for motor " + std::to_string(joint) + " is negative; gains must be >= 0");
       }
     }
     if (auto v = take(command.kp, kHasKp, update.kp, "kp", 0, limits.kp_max)) return *v;

@@ -38,14 +38,19 @@ void hold_measured(JointControl& joint, const driver::JointFeedback& measured, G
   joint.torque_nm = 0;
 }
 
-void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured, Gains gains) noexcept {
+void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured,
+                    Gains gains) noexcept {
   switch (behavior) {
-    case Behavior::kKeep: hold_position(joint, measured, gains); return;
+    case Behavior::kKeep:
+      hold_position(joint, measured, gains);
+      return;
     case Behavior::kDamping:
       joint.mode = JointMode::kDamping;
       joint.kd = gains.kd;
       return;
-    case Behavior::kZeroTorque: joint.mode = JointMode::kZeroTorque; return;
+    case Behavior::kZeroTorque:
+      joint.mode = JointMode::kZeroTorque;
+      return;
   }
 }
 
@@ -53,14 +58,14 @@ driver::JointCommand joint_output(JointControl& joint, const driver::JointFeedba
                                   const MotionLimits& limits, double dt_s, std::int64_t now_ns) noexcept {
   driver::JointCommand out;
   switch (joint.mode) {
-    case JointMode::kIdle: return out;
+    case JointMode::kIdle:
+      return out;
     case JointMode::kTrack: {
       // Between streamed targets, extrapolate along the stream's velocity (first-order hold).
       const std::int64_t age_ns = std::clamp<std::int64_t>(now_ns - joint.target_time_ns, 0, joint.extrapolate_ns);
       const bool extrapolating = now_ns - joint.target_time_ns < joint.extrapolate_ns;
       const double target = joint.target_position + joint.target_velocity * static_cast<double>(age_ns) * 1e-9;
-      joint.setpoint =
-          limit_step(joint.setpoint, target, extrapolating ? joint.target_velocity : 0.0, limits, dt_s);
+      joint.setpoint = limit_step(joint.setpoint, target, extrapolating ? joint.target_velocity : 0.0, limits, dt_s);
       out.kind = joint.track_kind;
       out.position_rad = joint.setpoint.position;
       out.velocity_rad_s = joint.setpoint.velocity;

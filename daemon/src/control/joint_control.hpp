@@ -23,9 +23,9 @@ struct JointControl {
   JointMode mode = JointMode::kIdle;
   driver::JointCommandKind track_kind = driver::JointCommandKind::kPosition;
   double target_position = 0;
-  double target_velocity = 0;        // feed-forward while the target is extrapolated
-  std::int64_t target_time_ns = 0;   // when the target was valid
-  std::int64_t extrapolate_ns = 0;   // extrapolate target_velocity for at most this long
+  double target_velocity = 0;       // feed-forward while the target is extrapolated
+  std::int64_t target_time_ns = 0;  // when the target was valid
+  std::int64_t extrapolate_ns = 0;  // extrapolate target_velocity for at most this long
   double kp = 0;
   double kd = 0;
   double torque_nm = 0;
@@ -49,7 +49,8 @@ void hold_position(JointControl& joint, const driver::JointFeedback& measured, G
 void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains) noexcept;
 
 /// Applies a session's timeout / release behaviour (already mapped to what the device can do).
-void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured, Gains gains) noexcept;
+void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured,
+                    Gains gains) noexcept;
 
 /// The joint's command for this tick; advances the limiter for kTrack.
 driver::JointCommand joint_output(JointControl& joint, const driver::JointFeedback& measured,

@@ -71,8 +71,8 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
     std::size_t device = devices_.size();
     if (auto named = sessions_.resolve_device(command.device)) device = named.value();
     if (device == devices_.size()) {
-      log_.warn("unattributed", "rejected command: uuid '" + command.uuid +
-                                    "' is not an active session and names no known device");
+      log_.warn("unattributed",
+                "rejected command: uuid '" + command.uuid + "' is not an active session and names no known device");
       return;
     }
     counters_[device]->received.fetch_add(1, std::memory_order_relaxed);

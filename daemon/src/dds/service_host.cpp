@@ -32,20 +32,20 @@ ServiceHost::ServiceHost(const wire::Participant& participant, service::SessionS
 ServiceHost::~ServiceHost() { stop(); }
 
 Result<void> ServiceHost::create_servers() {
-  for (auto result : {make_server(participant_, "request_control", request_control_),
-                      make_server(participant_, "release_control", release_control_),
-                      make_server(participant_, "get_available_motors", get_available_motors_),
-                      make_server(participant_, "reset_zero", reset_zero_),
-                      make_server(participant_, "estop", estop_),
-                      make_server(participant_, "list_devices", list_devices_),
-                      make_server(participant_, "device_call", device_call_)}) {
+  for (const auto& result :
+       {make_server(participant_, "request_control", request_control_),
+        make_server(participant_, "release_control", release_control_),
+        make_server(participant_, "get_available_motors", get_available_motors_),
+        make_server(participant_, "reset_zero", reset_zero_), make_server(participant_, "estop", estop_),
+        make_server(participant_, "list_devices", list_devices_),
+        make_server(participant_, "device_call", device_call_)}) {
     if (!result) return result;
   }
   waitset_ = wire::Entity(dds_create_waitset(participant_.handle()));
-  for (dds_entity_t reader : {request_control_->request_reader(), release_control_->request_reader(),
-                              get_available_motors_->request_reader(), reset_zero_->request_reader(),
-                              estop_->request_reader(), list_devices_->request_reader(),
-                              device_call_->request_reader()}) {
+  for (dds_entity_t reader :
+       {request_control_->request_reader(), release_control_->request_reader(), get_available_motors_->request_reader(),
+        reset_zero_->request_reader(), estop_->request_reader(), list_devices_->request_reader(),
+        device_call_->request_reader()}) {
     dds_waitset_attach(waitset_.get(), dds_create_readcondition(reader, DDS_ANY_STATE), 0);
   }
   stop_condition_ = dds_create_guardcondition(participant_.handle());
@@ -53,7 +53,9 @@ Result<void> ServiceHost::create_servers() {
   return {};
 }
 
-void ServiceHost::start() { thread_ = std::thread([this] { run(); }); }
+void ServiceHost::start() {
+  thread_ = std::thread([this] { run(); });
+}
 
 void ServiceHost::stop() {
   if (thread_.joinable()) {
@@ -112,8 +114,7 @@ void ServiceHost::run() {
     dds_waitset_wait(waitset_.get(), nullptr, 0, DDS_MSECS(200));
     serve(*request_control_, [this](const RequestControlRequest& r) { return sessions_.request_control(r); });
     serve(*release_control_, [this](const ReleaseControlRequest& r) { return sessions_.release_control(r); });
-    serve(*get_available_motors_,
-          [this](const GetAvailableMotorsRequest& r) { return sessions_.available_motors(r); });
+    serve(*get_available_motors_, [this](const GetAvailableMotorsRequest& r) { return sessions_.available_motors(r); });
     serve(*estop_, [this](const EstopRequest& r) { return devices_.estop(r); });
     serve(*list_devices_, [this](const ListDevicesRequest& r) { return devices_.list_devices(r); });
     serve_on_worker(*reset_zero_, [this](const ResetZeroRequest& r) { return devices_.reset_zero(r); });

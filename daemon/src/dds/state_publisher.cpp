@@ -16,10 +16,14 @@ std::string state_text(const device::LoopState& state, const std::string& estop_
 
 const char* session_end_text(device::LoopEvent::Type type) {
   switch (type) {
-    case device::LoopEvent::Type::kSessionTimedOut: return "timed out";
-    case device::LoopEvent::Type::kSessionReleased: return "released";
-    case device::LoopEvent::Type::kSessionEndedByShutdown: return "ended by shutdown";
-    default: return "ended";
+    case device::LoopEvent::Type::kSessionTimedOut:
+      return "timed out";
+    case device::LoopEvent::Type::kSessionReleased:
+      return "released";
+    case device::LoopEvent::Type::kSessionEndedByShutdown:
+      return "ended by shutdown";
+    default:
+      return "ended";
   }
 }
 
@@ -49,7 +53,9 @@ StatePublisher::~StatePublisher() {
   if (thread_.joinable()) thread_.join();
 }
 
-void StatePublisher::start() { thread_ = std::thread([this] { run(); }); }
+void StatePublisher::start() {
+  thread_ = std::thread([this] { run(); });
+}
 
 void StatePublisher::run() {
   pthread_setname_np(pthread_self(), ("pub-" + device_.model().name).substr(0, 15).c_str());
@@ -105,8 +111,8 @@ void StatePublisher::handle(const device::LoopEvent& event) {
                      ended ? ended->uuid : "?", ended ? ended->node_name : "?", event.silence_ns / rt::kNsPerMs,
                      to_string(event.behavior));
       } else {
-        spdlog::info("device '{}': session in slot {} {}; motors {}", name, event.slot,
-                     session_end_text(event.type), to_string(event.behavior));
+        spdlog::info("device '{}': session in slot {} {}; motors {}", name, event.slot, session_end_text(event.type),
+                     to_string(event.behavior));
       }
       break;
     }
@@ -115,14 +121,17 @@ void StatePublisher::handle(const device::LoopEvent& event) {
                     event.fault.code, event.fault.text.data(), to_string(event.behavior), name);
       break;
     case device::LoopEvent::Type::kEstopApplied:
-      spdlog::warn("device '{}': e-stop applied ({}), joints {}", name, device_.estop_note(), to_string(event.behavior));
+      spdlog::warn("device '{}': e-stop applied ({}), joints {}", name, device_.estop_note(),
+                   to_string(event.behavior));
       break;
-    case device::LoopEvent::Type::kEstopCleared: spdlog::info("device '{}': e-stop reset", name); break;
+    case device::LoopEvent::Type::kEstopCleared:
+      spdlog::info("device '{}': e-stop reset", name);
+      break;
     case device::LoopEvent::Type::kBlackBoxFrozen: {
       // A freeze carries the fault that caused it; none means someone asked for a capture.
-      const std::string reason =
-          event.fault.code != 0 ? "fault " + std::to_string(event.fault.code) + ": " + event.fault.text.data()
-                                : "requested";
+      const std::string reason = event.fault.code != 0
+                                     ? "fault " + std::to_string(event.fault.code) + ": " + event.fault.text.data()
+                                     : "requested";
       if (black_box_.capture_if_frozen(reason)) spdlog::info("{}", black_box_.summary());
       break;
     }

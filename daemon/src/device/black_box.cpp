@@ -76,8 +76,8 @@ std::string BlackBox::summary() const {
   const std::lock_guard lock(mutex_);
   if (records_.empty()) return "black box of '" + model_.name + "' is empty";
   return "black box of '" + model_.name + "': ticks " + std::to_string(records_.front().tick) + ".." +
-         std::to_string(records_.back().tick) + " kept (" + reason_ + "); read it with: robotctl call " +
-         model_.name + " blackbox";
+         std::to_string(records_.back().tick) + " kept (" + reason_ + "); read it with: robotctl call " + model_.name +
+         " blackbox";
 }
 
 }  // namespace robotd::device

@@ -18,9 +18,12 @@ bool is_link_problem(driver::IoResult result) {
 
 JointMode mode_after(Behavior behavior) {
   switch (behavior) {
-    case Behavior::kKeep: return JointMode::kTrack;
-    case Behavior::kDamping: return JointMode::kDamping;
-    case Behavior::kZeroTorque: return JointMode::kZeroTorque;
+    case Behavior::kKeep:
+      return JointMode::kTrack;
+    case Behavior::kDamping:
+      return JointMode::kDamping;
+    case Behavior::kZeroTorque:
+      return JointMode::kZeroTorque;
   }
   return JointMode::kTrack;
 }
@@ -53,9 +56,9 @@ void ControlLoop::run() noexcept {
     tick(deadline, wake);
     const std::int64_t end = rt::monotonic_now_ns();
     last_execution_ns_ = end - wake;
-    channel_.timings.push(TickTiming{static_cast<std::int32_t>(wake - deadline),
-                                     static_cast<std::int32_t>(last_execution_ns_),
-                                     static_cast<std::int32_t>(previous_wake == 0 ? period_ns_ : wake - previous_wake)});
+    channel_.timings.push(
+        TickTiming{static_cast<std::int32_t>(wake - deadline), static_cast<std::int32_t>(last_execution_ns_),
+                   static_cast<std::int32_t>(previous_wake == 0 ? period_ns_ : wake - previous_wake)});
     previous_wake = wake;
     deadline += period_ns_;
     if (end > deadline) {
@@ -100,8 +103,10 @@ void ControlLoop::drain_control_events(std::int64_t now_ns) noexcept {
     SlotRuntime& slot = slots_[event->slot];
     if (event->type == ControlEvent::Type::kSessionStart) {
       if (slot.active) end_session(event->slot, slot.timeout_behavior, LoopEvent::Type::kSessionReleased, now_ns, 0);
-      slot = SlotRuntime{true,          event->generation, event->mode,       event->behavior, event->timeout_ns,
-                         event->granted_ns, event->motors, event->default_kp, event->default_kd};
+      slot = SlotRuntime{
+          true,          event->generation, event->mode,      event->behavior, event->timeout_ns, event->granted_ns,
+          event->motors, event->default_kp, event->default_kd};
+      newest_started_generation_ = std::max(newest_started_generation_, event->generation);
       for (std::size_t j = 0; j < joint_count_; ++j) {
         if (!event->motors.test(j)) continue;
         owners_[j].slot = static_cast<std::int8_t>(event->slot);
@@ -180,16 +185,17 @@ void ControlLoop::apply_targets() noexcept {
     JointOwner& owner = owners_[j];
     if (target.sequence == owner.applied_sequence) continue;
     if (owner.slot < 0 || target.generation != owner.generation) {
-      // Written by a session that has ended (or whose start this loop has not seen yet;
-      // then a later tick applies it once the start event has arrived).
-      if (target.generation < owner.generation || owner.slot < 0) {
+      // Written by a session that has ended (its generation started here before), or by one
+      // whose start event this loop has not drained yet (the snapshot can be taken after this
+      // tick drained the events); a later tick applies that one once the start has arrived.
+      if (target.generation <= newest_started_generation_) {
         owner.applied_sequence = target.sequence;
         channel_.dropped_stale.fetch_add(1, std::memory_order_relaxed);
       }
       continue;
     }
     owner.applied_sequence = target.sequence;
-    apply_target(j, target, slots_[static_cast<std::size_t>(owner.slot)]);
+    apply_target(j, target, slots_[static_cast<std::uint8_t>(owner.slot)]);
     newest_sent_ns_ = std::max(newest_sent_ns_, target.sent_ns);
   }
 }
@@ -228,8 +234,7 @@ void ControlLoop::apply_target(std::size_t j, const JointTarget& target, const S
 
   control::begin_tracking(joint, feedback_.joints[j], motion_limits_[j].velocity_max);
   joint.target_position = position;
-  joint.target_velocity =
-      control::clamp(velocity, -motion_limits_[j].velocity_max, motion_limits_[j].velocity_max);
+  joint.target_velocity = control::clamp(velocity, -motion_limits_[j].velocity_max, motion_limits_[j].velocity_max);
   joint.target_time_ns = target.received_ns;
   joint.extrapolate_ns = std::clamp<std::int64_t>(interval, 0, 100'000'000);
   joint.kp = (u.fields & control::kHasKp) != 0 ? u.kp : defaults.kp;
@@ -282,10 +287,18 @@ void ControlLoop::leave_safe_state() noexcept {
       // Never resume a stale target: whatever was tracking or applying torque now holds
       // where it is measured.
       case JointMode::kTrack:
-      case JointMode::kTorque: control::hold_measured(joint, feedback_.joints[j], gains); break;
-      case JointMode::kDamping: joint.mode = JointMode::kDamping; break;
-      case JointMode::kZeroTorque: joint.mode = JointMode::kZeroTorque; break;
-      case JointMode::kIdle: joint.mode = JointMode::kIdle; break;
+      case JointMode::kTorque:
+        control::hold_measured(joint, feedback_.joints[j], gains);
+        break;
+      case JointMode::kDamping:
+        joint.mode = JointMode::kDamping;
+        break;
+      case JointMode::kZeroTorque:
+        joint.mode = JointMode::kZeroTorque;
+        break;
+      case JointMode::kIdle:
+        joint.mode = JointMode::kIdle;
+        break;
     }
     owners_[j].previous_target_time_ns = 0;
   }
@@ -436,11 +449,10 @@ void ControlLoop::record_black_box(std::int64_t now_ns, std::int64_t wake_latenc
   record.state = current_state();
   record.joint_count = static_cast<std::uint8_t>(joint_count_);
   for (std::size_t j = 0; j < joint_count_; ++j) {
-    record.joints[j] = BlackBoxJoint{static_cast<float>(feedback_.joints[j].position_rad),
-                                     static_cast<float>(feedback_.joints[j].velocity_rad_s),
-                                     static_cast<float>(frame_.joints[j].position_rad),
-                                     static_cast<float>(frame_.joints[j].torque_nm),
-                                     static_cast<std::uint8_t>(frame_.joints[j].kind)};
+    record.joints[j] = BlackBoxJoint{
+        static_cast<float>(feedback_.joints[j].position_rad), static_cast<float>(feedback_.joints[j].velocity_rad_s),
+        static_cast<float>(frame_.joints[j].position_rad), static_cast<float>(frame_.joints[j].torque_nm),
+        static_cast<std::uint8_t>(frame_.joints[j].kind)};
   }
   channel_.black_box_next.store(index + 1, std::memory_order_release);
 }

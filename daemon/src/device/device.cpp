@@ -69,14 +69,14 @@ Result<void> Device::configure() {
     }
     driver::JointLimits& limits = model_.limits[static_cast<std::size_t>(it - model_.joint_names.begin())];
     const auto& o = override_limits;
-    for (auto result : {narrow(limits.position_min_rad, o.position_min_rad, false, o.path, "position_min_rad"),
-                        narrow(limits.position_max_rad, o.position_max_rad, true, o.path, "position_max_rad"),
-                        narrow(limits.velocity_max_rad_s, o.velocity_max_rad_s, true, o.path, "velocity_max_rad_s"),
-                        narrow(limits.acceleration_max_rad_s2, o.acceleration_max_rad_s2, true, o.path,
-                               "acceleration_max_rad_s2"),
-                        narrow(limits.effort_max_nm, o.effort_max_nm, true, o.path, "effort_max_nm"),
-                        narrow(limits.kp_max, o.kp_max, true, o.path, "kp_max"),
-                        narrow(limits.kd_max, o.kd_max, true, o.path, "kd_max")}) {
+    for (auto result :
+         {narrow(limits.position_min_rad, o.position_min_rad, false, o.path, "position_min_rad"),
+          narrow(limits.position_max_rad, o.position_max_rad, true, o.path, "position_max_rad"),
+          narrow(limits.velocity_max_rad_s, o.velocity_max_rad_s, true, o.path, "velocity_max_rad_s"),
+          narrow(limits.acceleration_max_rad_s2, o.acceleration_max_rad_s2, true, o.path, "acceleration_max_rad_s2"),
+          narrow(limits.effort_max_nm, o.effort_max_nm, true, o.path, "effort_max_nm"),
+          narrow(limits.kp_max, o.kp_max, true, o.path, "kp_max"),
+          narrow(limits.kd_max, o.kd_max, true, o.path, "kd_max")}) {
       if (!result) return result;
     }
     if (limits.position_min_rad >= limits.position_max_rad) {

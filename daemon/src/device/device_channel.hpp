@@ -129,13 +129,13 @@ struct DeviceChannel {
   rt::TripleBuffer<LoopState> state;
 
   std::array<BlackBoxRecord, kBlackBoxTicks> black_box{};
-  std::atomic<std::uint64_t> black_box_next{0};     // records written so far
+  std::atomic<std::uint64_t> black_box_next{0};  // records written so far
   std::atomic<bool> black_box_freeze_requested{false};
-  std::atomic<bool> black_box_frozen{false};         // RT stops writing until cleared
+  std::atomic<bool> black_box_frozen{false};  // RT stops writing until cleared
 
   std::atomic<bool> estop{false};
   std::atomic<bool> maintenance_requested{false};
-  std::atomic<bool> maintenance_active{false};       // RT ack: no driver I/O until cleared
+  std::atomic<bool> maintenance_active{false};  // RT ack: no driver I/O until cleared
   std::atomic<bool> maintenance_clears_fault{false};
   std::atomic<bool> shutdown_requested{false};
   std::atomic<bool> stopped{false};

@@ -1,14 +1,13 @@
 #include "plugin/plugin_loader.hpp"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
 #include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
 #include <sstream>
+#include <unistd.h>
 
-#ifndef ROBOTD_PLUGIN_INSTALL_DIR
-#error "ROBOTD_PLUGIN_INSTALL_DIR must be defined by the build"
+#if !defined(ROBOTD_PLUGIN_INSTALL_DIR) || !defined(ROBOTD_PLUGIN_SUBDIR)
+#error "ROBOTD_PLUGIN_INSTALL_DIR and ROBOTD_PLUGIN_SUBDIR must be defined by the build"
 #endif
 
 namespace robotd::plugin {
@@ -41,7 +40,8 @@ std::vector<std::string> plugin_search_path(const std::vector<std::string>& conf
     }
   }
   if (const std::string exe_dir = executable_directory(); !exe_dir.empty()) {
-    path.push_back((std::filesystem::path(exe_dir) / ".." / "lib" / "robotd" / "drivers").lexically_normal().string());
+    // The install tree and the build tree both put plugins at <prefix>/<libdir>/robotd/drivers.
+    path.push_back((std::filesystem::path(exe_dir) / ".." / ROBOTD_PLUGIN_SUBDIR).lexically_normal().string());
   }
   path.emplace_back(ROBOTD_PLUGIN_INSTALL_DIR);
   return path;
@@ -72,10 +72,11 @@ Result<std::unique_ptr<LoadedDriver>> load_driver_file(const std::string& path, 
   };
   void* symbol = dlsym(library, driver::kPluginEntrySymbol);
   if (symbol == nullptr) {
-    return close_and_refuse(path + " is not a robotd driver plugin: it does not export " +
-                            driver::kPluginEntrySymbol + "() (use ROBOTD_DRIVER_PLUGIN)");
+    return close_and_refuse(path + " is not a robotd driver plugin: it does not export " + driver::kPluginEntrySymbol +
+                            "() (use ROBOTD_DRIVER_PLUGIN)");
   }
-  const auto entry = reinterpret_cast<driver::PluginEntry>(symbol);  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
+  const auto entry =
+      reinterpret_cast<driver::PluginEntry>(symbol);  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
   const driver::PluginInfo* info = entry();
   if (info == nullptr) return close_and_refuse(path + ": " + driver::kPluginEntrySymbol + "() returned nothing");
   if (info->abi_version != driver::kAbiVersion) {
@@ -86,8 +87,14 @@ Result<std::unique_ptr<LoadedDriver>> load_driver_file(const std::string& path, 
   if (info->command_frame_size != sizeof(driver::CommandFrame) || info->feedback_size != sizeof(driver::Feedback)) {
     return close_and_refuse(path + " disagrees with robotd on the RT struct layout (CommandFrame " +
                             std::to_string(info->command_frame_size) + " vs " +
-                            std::to_string(sizeof(driver::CommandFrame)) + " bytes): rebuild it against this "
+                            std::to_string(sizeof(driver::CommandFrame)) +
+                            " bytes): rebuild it against this "
                             "robotd's headers");
+  }
+  // Only now, with the layout known to match, can the rest of PluginInfo be trusted.
+  if (info->name == nullptr || info->version == nullptr || info->create == nullptr || info->destroy == nullptr) {
+    return close_and_refuse(path + ": " + driver::kPluginEntrySymbol +
+                            "() returned an incomplete PluginInfo (use ROBOTD_DRIVER_PLUGIN)");
   }
   if (expected_name != info->name) {
     return close_and_refuse(path + " calls itself '" + std::string(info->name) + "', not '" + expected_name + "'");

@@ -33,7 +33,7 @@ class LoadedDriver {
 };
 
 /// Where plugins are looked for, in order: the config's plugin_dirs, $ROBOTD_PLUGIN_PATH
-/// (colon-separated), <robotd's directory>/../lib/robotd/drivers, then the install directory.
+/// (colon-separated), <robotd's directory>/../<libdir>/robotd/drivers, then the install directory.
 std::vector<std::string> plugin_search_path(const std::vector<std::string>& config_dirs);
 
 std::string plugin_file_name(const std::string& driver_name);

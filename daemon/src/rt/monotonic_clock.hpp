@@ -1,8 +1,8 @@
 // CLOCK_MONOTONIC in nanoseconds: the one time base of robotd's loops, deadlines and sessions.
 #pragma once
 
-#include <cstdint>
 #include <cerrno>
+#include <cstdint>
 #include <ctime>
 
 namespace robotd::rt {

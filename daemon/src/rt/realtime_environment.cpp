@@ -1,14 +1,13 @@
 #include "rt/realtime_environment.hpp"
 
+#include <cerrno>
+#include <fstream>
+#include <sstream>
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/utsname.h>
+#include <system_error>
 #include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
 namespace robotd::rt {
 namespace {
@@ -39,8 +38,8 @@ EnvironmentReport inspect_environment() {
   EnvironmentReport report;
   utsname name{};
   if (uname(&name) == 0) report.kernel = std::string(name.release) + " " + name.version;
-  report.preempt_rt_kernel = read_first_line("/sys/kernel/realtime") == "1" ||
-                             report.kernel.find("PREEMPT_RT") != std::string::npos;
+  report.preempt_rt_kernel =
+      read_first_line("/sys/kernel/realtime") == "1" || report.kernel.find("PREEMPT_RT") != std::string::npos;
   report.rtprio_limit = limit_text(RLIMIT_RTPRIO);
   report.memlock_limit = limit_text(RLIMIT_MEMLOCK);
   report.can_use_fifo = fifo_allowed();
@@ -65,15 +64,15 @@ EnvironmentReport inspect_environment() {
 std::string describe(const EnvironmentReport& report) {
   std::ostringstream out;
   out << "kernel " << report.kernel << (report.preempt_rt_kernel ? " (PREEMPT_RT)" : " (not PREEMPT_RT)")
-      << "; RLIMIT_RTPRIO " << report.rtprio_limit << "; RLIMIT_MEMLOCK " << report.memlock_limit
-      << "; SCHED_FIFO " << (report.can_use_fifo ? "permitted" : "not permitted") << "; CPU governor "
-      << report.cpu_governor << "; " << report.cpu_count << " CPUs online";
+      << "; RLIMIT_RTPRIO " << report.rtprio_limit << "; RLIMIT_MEMLOCK " << report.memlock_limit << "; SCHED_FIFO "
+      << (report.can_use_fifo ? "permitted" : "not permitted") << "; CPU governor " << report.cpu_governor << "; "
+      << report.cpu_count << " CPUs online";
   return out.str();
 }
 
 std::string lock_memory() {
   if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) return "";
-  return std::string("mlockall failed (") + std::strerror(errno) +
+  return std::string("mlockall failed (") + std::generic_category().message(errno) +
          "): pages may be swapped out under memory pressure; raise RLIMIT_MEMLOCK (LimitMEMLOCK=infinity) "
          "or grant CAP_IPC_LOCK";
 }

@@ -1,19 +1,18 @@
 #include "rt/realtime_thread.hpp"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <array>
 #include <cerrno>
-#include <cstring>
 #include <future>
+#include <pthread.h>
+#include <sched.h>
+#include <system_error>
 
 namespace robotd::rt {
 namespace {
 
 // Touch this much stack up front so the loop never page-faults on it (with mlockall the
 // pages then stay resident).
-constexpr std::size_t kStackPrefaultBytes = 256 * 1024;
+constexpr std::size_t kStackPrefaultBytes = std::size_t{256} * 1024;
 
 void prefault_stack() {
   std::array<volatile unsigned char, kStackPrefaultBytes> stack{};
@@ -36,7 +35,8 @@ Setup configure_current_thread(const ThreadSettings& settings) {
     CPU_SET(static_cast<std::size_t>(settings.cpu), &cpus);
     const int rc = pthread_setaffinity_np(pthread_self(), sizeof(cpus), &cpus);
     if (rc != 0) {
-      report += "pinning to CPU " + std::to_string(settings.cpu) + " refused (" + std::strerror(rc) + "); ";
+      report +=
+          "pinning to CPU " + std::to_string(settings.cpu) + " refused (" + std::generic_category().message(rc) + "); ";
       if (settings.policy == RealtimePolicy::kRequire) setup.ok = false;
     } else {
       report += "pinned to CPU " + std::to_string(settings.cpu) + "; ";
@@ -53,7 +53,8 @@ Setup configure_current_thread(const ThreadSettings& settings) {
       setup.start.realtime = true;
       report += "SCHED_FIFO priority " + std::to_string(settings.priority);
     } else {
-      report += "SCHED_FIFO priority " + std::to_string(settings.priority) + " refused (" + std::strerror(rc) +
+      report += "SCHED_FIFO priority " + std::to_string(settings.priority) + " refused (" +
+                std::generic_category().message(rc) +
                 "): running SCHED_OTHER; grant CAP_SYS_NICE or raise RLIMIT_RTPRIO (LimitRTPRIO= in the unit)";
       if (settings.policy == RealtimePolicy::kRequire) setup.ok = false;
     }

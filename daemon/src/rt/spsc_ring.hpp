@@ -34,9 +34,7 @@ class SpscRing {
     return item;
   }
 
-  bool empty() const noexcept {
-    return tail_.load(std::memory_order_acquire) == head_.load(std::memory_order_acquire);
-  }
+  bool empty() const noexcept { return tail_.load(std::memory_order_acquire) == head_.load(std::memory_order_acquire); }
 
  private:
   static constexpr std::size_t kCacheLine = 64;

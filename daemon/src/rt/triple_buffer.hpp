@@ -21,8 +21,8 @@ class TripleBuffer {
 
   void publish() noexcept {
     // Swap our buffer into the middle, marking it fresh, and take the old middle one.
-    const std::uint8_t previous = middle_.exchange(static_cast<std::uint8_t>(write_index_ | kFresh),
-                                                   std::memory_order_acq_rel);
+    const std::uint8_t previous =
+        middle_.exchange(static_cast<std::uint8_t>(write_index_ | kFresh), std::memory_order_acq_rel);
     write_index_ = previous & kIndexMask;
   }
 

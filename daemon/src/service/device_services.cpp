@@ -1,10 +1,10 @@
 #include "service/device_services.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <cmath>
 #include <sstream>
 #include <thread>
+
+#include <spdlog/spdlog.h>
 
 #include "rt/monotonic_clock.hpp"
 
@@ -123,8 +123,8 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   }
   const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
   if (state != DeviceState::kRunning) {
-    return ResetZeroResponse{false, "device '" + model.name + "' is " + std::string(to_string(state)) +
-                                        "; reset_zero needs it RUNNING"};
+    return ResetZeroResponse{
+        false, "device '" + model.name + "' is " + std::string(to_string(state)) + "; reset_zero needs it RUNNING"};
   }
   const std::int32_t timeout_ms = request.timeout_ms == 0 ? 10'000 : request.timeout_ms;
   if (timeout_ms < 100 || timeout_ms > 60'000) {
@@ -143,8 +143,8 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
 
   const auto timeout = std::chrono::milliseconds(timeout_ms);
   spdlog::info("device '{}': reset_zero of {} motor(s)", model.name, joints.size());
-  auto zeroed = device.run_maintenance([&](driver::Driver& driver) { return driver.reset_zero(joints); }, false,
-                                       timeout);
+  auto zeroed =
+      device.run_maintenance([&](driver::Driver& driver) { return driver.reset_zero(joints); }, false, timeout);
   if (!zeroed) return ResetZeroResponse{false, "reset_zero on '" + model.name + "' failed: " + zeroed.error().message};
 
   device::LoopState after;
@@ -155,7 +155,8 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   std::ostringstream off;
   for (const int joint : joints) {
     const double position = after.feedback.joints[static_cast<std::size_t>(joint)].position_rad;
-    if (std::fabs(position) > kZeroTolerance_rad) off << " " << model.joint_names[static_cast<std::size_t>(joint)] << "=" << position;
+    if (std::fabs(position) > kZeroTolerance_rad)
+      off << " " << model.joint_names[static_cast<std::size_t>(joint)] << "=" << position;
   }
   if (!off.str().empty()) {
     return ResetZeroResponse{false, "zeroing did not take: motors not within " + std::to_string(kZeroTolerance_rad) +
@@ -193,8 +194,8 @@ DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::strin
   if (op == "recover") {
     if (!args.empty()) return call_failed("recover takes no arguments, got " + args.dump());
     spdlog::info("device '{}': recover requested", name);
-    auto recovered = device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true,
-                                            std::chrono::seconds(10));
+    auto recovered =
+        device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true, std::chrono::seconds(10));
     if (!recovered) return call_failed("recover of '" + name + "' failed: " + recovered.error().message);
     device::LoopState state;
     if (!wait_for_state(index, latest_state_(index).tick, std::chrono::seconds(2), state)) {
@@ -217,7 +218,8 @@ DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::strin
     return DeviceCallResponse{true, "captured now", capture.value().dump()};
   }
   const nlohmann::json latest = box.latest();
-  if (latest.is_null()) return call_failed("no black box captured on '" + name + "' yet (no fault); use {\"fresh\": true}");
+  if (latest.is_null())
+    return call_failed("no black box captured on '" + name + "' yet (no fault); use {\"fresh\": true}");
   return DeviceCallResponse{true, "last capture", latest.dump()};
 }
 

@@ -31,7 +31,7 @@ class DeviceServices {
   static std::vector<std::string> daemon_ops();
 
  private:
-  DeviceCallResponse daemon_op(std::size_t device, const std::string& op, const nlohmann::json& args);
+  DeviceCallResponse daemon_op(std::size_t index, const std::string& op, const nlohmann::json& args);
   bool wait_for_state(std::size_t device, std::uint64_t after_tick, std::chrono::milliseconds timeout,
                       device::LoopState& out) const;
 

@@ -39,11 +39,16 @@ std::string state_refusal(DeviceState state, const std::string& device) {
   switch (state) {
     case DeviceState::kFault:
       return "device '" + device + "' is in FAULT: recover it first (robotctl call " + device + " recover)";
-    case DeviceState::kEstop: return "device '" + device + "' is e-stopped: reset the e-stop first";
-    case DeviceState::kMaintenance: return "device '" + device + "' is in maintenance (recover or reset_zero)";
-    case DeviceState::kConnecting: return "device '" + device + "' has not delivered feedback yet";
-    case DeviceState::kStopped: return "device '" + device + "' is stopping";
-    case DeviceState::kRunning: return "";
+    case DeviceState::kEstop:
+      return "device '" + device + "' is e-stopped: reset the e-stop first";
+    case DeviceState::kMaintenance:
+      return "device '" + device + "' is in maintenance (recover or reset_zero)";
+    case DeviceState::kConnecting:
+      return "device '" + device + "' has not delivered feedback yet";
+    case DeviceState::kStopped:
+      return "device '" + device + "' is stopping";
+    case DeviceState::kRunning:
+      return "";
   }
   return "";
 }
@@ -77,18 +82,21 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
     const session::SessionRecord& record = granted.value();
     if (!device.channel().post(start_event(record))) {
       (void)table_.release(record.uuid);
-      response.message = "device '" + device.model().name + "' is busy (its loop has not taken the last requests); retry";
+      response.message =
+          "device '" + device.model().name + "' is busy (its loop has not taken the last requests); retry";
       return response;
     }
     response.success = true;
     response.uuid = record.uuid;
     response.motor_ids = record.motor_ids;
     response.applied_behavior = record.applied_behavior;
+    response.device = record.device;
     response.message = "granted " + std::to_string(record.motor_ids.size()) + " motor(s) of '" + record.device +
                        "' in " + std::string(to_string(record.mode)) + " mode; on timeout (" +
                        std::to_string(record.timeout_ms) + " ms) " + std::string(to_string(record.applied_behavior));
     if (record.applied_behavior != record.requested_behavior) {
-      response.message += " (" + std::string(to_string(record.requested_behavior)) + " is not supported by this device)";
+      response.message +=
+          " (" + std::string(to_string(record.requested_behavior)) + " is not supported by this device)";
     }
     spdlog::info("session {} granted to node '{}': {}", record.uuid, record.node_name, response.message);
   }
@@ -120,8 +128,8 @@ ReleaseControlResponse SessionService::release_control(const ReleaseControlReque
     event.behavior = applied;
     if (!device.channel().post(event)) {
       // The loop is not draining its events; its timeout still ends the session.
-      spdlog::error("device '{}': release of session {} could not be queued; it will time out instead",
-                    record.device, record.uuid);
+      spdlog::error("device '{}': release of session {} could not be queued; it will time out instead", record.device,
+                    record.uuid);
     }
     response.success = true;
     response.applied_behavior = applied;
@@ -144,7 +152,8 @@ GetAvailableMotorsResponse SessionService::available_motors(const GetAvailableMo
   }
   const control::DeviceModel& model = table_.device(device_index.value());
   response.motor_ids = table_.idle_motors(device_index.value());
-  for (const auto id : response.motor_ids) response.motor_names.push_back(model.joint_names[static_cast<std::size_t>(id)]);
+  for (const auto id : response.motor_ids)
+    response.motor_names.push_back(model.joint_names[static_cast<std::size_t>(id)]);
   response.success = true;
   response.message = std::to_string(response.motor_ids.size()) + " of " + std::to_string(model.joint_count()) +
                      " motors of '" + model.name + "' are idle";

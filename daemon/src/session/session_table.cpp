@@ -59,7 +59,8 @@ Result<std::size_t> SessionTable::resolve_device(std::string_view name) const {
   return refused("unknown device '" + std::string(name) + "' (this robotd serves " + known + ")");
 }
 
-Result<void> SessionTable::check_request(const RequestControlRequest& request, const control::DeviceModel& model) const {
+Result<void> SessionTable::check_request(const RequestControlRequest& request,
+                                         const control::DeviceModel& model) const {
   if (!is_valid(request.control_mode)) {
     return refused("control_mode " + std::to_string(static_cast<int>(request.control_mode)) +
                    " is not one of POSITION_MODE=0, TORQUE_MODE=1, MIXED_MODE=2");
@@ -128,8 +129,8 @@ Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, 
   if (const std::string holders = describe_holders(sessions, wanted, now_ns); !holders.empty()) {
     return refused("device '" + model.name + "': " + holders);
   }
-  const auto free_slot = std::find_if(sessions.slots.begin(), sessions.slots.end(),
-                                      [](const auto& slot) { return !slot.has_value(); });
+  const auto free_slot =
+      std::find_if(sessions.slots.begin(), sessions.slots.end(), [](const auto& slot) { return !slot.has_value(); });
   if (free_slot == sessions.slots.end()) {
     return refused("device '" + model.name + "' already has " + std::to_string(kMaxSessionsPerDevice) +
                    " sessions; release one first");

@@ -1,10 +1,9 @@
 #include "session/session_uuid.hpp"
 
-#include <sys/random.h>
-
 #include <array>
 #include <cstdint>
 #include <stdexcept>
+#include <sys/random.h>
 
 namespace robotd::session {
 

@@ -227,8 +227,8 @@ void JsonReader::finish() {
   for (const auto& name : consumed_) known += (known.empty() ? "" : ", ") + name;
   for (const auto& [key, element] : value_->items()) {
     if (consumed_.find(key) != consumed_.end()) continue;
-    error(key, known.empty() ? "unknown key (this object takes no keys)"
-                             : "unknown key (expected one of: " + known + ")");
+    error(key,
+          known.empty() ? "unknown key (this object takes no keys)" : "unknown key (expected one of: " + known + ")");
   }
 }
 

@@ -191,6 +191,7 @@ struct RequestControlResponse {
   std::string uuid;
   std::vector<std::int32_t> motor_ids;
   Behavior applied_behavior = Behavior::kKeep;
+  std::string device;  // the device granted
 };
 
 struct ReleaseControlRequest {

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <thread>
 
@@ -38,9 +39,12 @@ TEST(SimSeqLock, ReadersNeverSeeATornValue) {
       lock.store(sample);
     }
   });
+  // Read until the writer has published many generations (it may start late on a busy machine).
   int torn_words = 0;
   std::uint32_t newest_generation = 0;
-  for (int read = 0; read < 20'000; ++read) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  for (int read = 0; (read < 20'000 || newest_generation < 1000) && std::chrono::steady_clock::now() < give_up;
+       ++read) {
     const Sample sample = lock.load();
     for (const std::uint64_t word : sample.words) torn_words += word != sample.tail ? 1 : 0;
     newest_generation = sample.tail;

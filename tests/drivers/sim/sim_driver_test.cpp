@@ -104,7 +104,7 @@ TEST_F(SimDriverTest, DescribeReportsJointsLimitsCapabilitiesAndOps) {
     op_names += op.name + " ";
     EXPECT_FALSE(op.help.empty()) << op.name;
   }
-  EXPECT_EQ(op_names, "stop_feedback disconnect raise_fault set_external_torque state ");
+  EXPECT_EQ(op_names, "stop_feedback disconnect raise_fault set_external_torque stall state ");
 }
 
 TEST_F(SimDriverTest, ConfigureRejectsInvalidParamsNamingTheKey) {
@@ -395,7 +395,7 @@ TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   EXPECT_EQ(result.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(result.error().message,
             R"(unknown op "levitate" (the sim driver has: stop_feedback, disconnect, raise_fault, )"
-            R"(set_external_torque, state))");
+            R"(set_external_torque, stall, state))");
 }
 
 TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {

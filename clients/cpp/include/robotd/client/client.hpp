@@ -24,7 +24,7 @@ class Client {
  public:
   /// Joins robotd's DDS domain. Succeeds even if robotd is not running; calls then fail
   /// with ErrorCode::kNotAvailable after the service timeout.
-  static Result<Client> connect(ClientOptions options = ClientOptions::from_environment());
+  static Result<Client> connect(const ClientOptions& options = ClientOptions::from_environment());
 
   Client(Client&&) noexcept;
   Client& operator=(Client&&) noexcept;
@@ -37,14 +37,15 @@ class Client {
   Result<Session> request_control(const SessionRequest& request);
   Result<ReleaseControlResponse> release_control(const std::string& uuid, Behavior release_mode);
   Result<GetAvailableMotorsResponse> available_motors(const std::string& device = "");
-  Result<void> estop(const std::string& device = "", const std::string& reason = "");
-  Result<void> reset_estop(const std::string& device = "");
+  /// Engages (latches) or resets the e-stop; "" = every device. The response names them.
+  Result<EstopResponse> estop(const std::string& device = "", const std::string& reason = "");
+  Result<EstopResponse> reset_estop(const std::string& device = "");
   /// Blocks until robotd has zeroed the motors (up to `timeout`, plus the service timeout).
   Result<void> reset_zero(const std::string& device, const std::vector<std::int32_t>& motor_ids,
                           std::chrono::milliseconds timeout = std::chrono::seconds(10));
   /// A device operation (driver op or robotd's recover / blackbox); returns its JSON result.
-  Result<std::string> device_call(const std::string& device, const std::string& op,
-                                  const std::string& args_json = "{}",
+  /// Finding robotd takes at most the service timeout; the operation itself up to `timeout`.
+  Result<std::string> device_call(const std::string& device, const std::string& op, const std::string& args_json = "{}",
                                   std::chrono::milliseconds timeout = std::chrono::seconds(10));
 
   // Topics. Callbacks run on the client's dispatch thread.

@@ -49,6 +49,7 @@ class Session {
   ~Session();
 
   const std::string& uuid() const { return uuid_; }
+  /// The device robotd granted (also when the request named none).
   const std::string& device() const { return device_; }
   const std::vector<std::int32_t>& motor_ids() const { return motor_ids_; }
   ControlMode mode() const { return mode_; }
@@ -70,7 +71,7 @@ class Session {
 
  private:
   friend class Client;
-  Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, const SessionRequest& request,
+  Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, std::string device, const SessionRequest& request,
           std::vector<std::int32_t> motor_ids, Behavior applied_behavior);
 
   std::shared_ptr<detail::ClientCore> core_;

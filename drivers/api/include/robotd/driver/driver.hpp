@@ -103,21 +103,20 @@ using PluginEntry = const PluginInfo* (*)();
 }  // namespace robotd::driver
 
 /// Exports a driver class as a robotd plugin: ROBOTD_DRIVER_PLUGIN(SimDriver, "sim", "1.0.0")
-#define ROBOTD_DRIVER_PLUGIN(DriverClass, plugin_name, plugin_version)                                  \
-  extern "C" __attribute__((visibility("default"))) const robotd::driver::PluginInfo* robotd_driver_plugin() { \
-    static const robotd::driver::PluginInfo info{                                                          \
-        robotd::driver::kAbiVersion,                                                                      \
-        static_cast<std::uint32_t>(sizeof(robotd::driver::CommandFrame)),                                  \
-        static_cast<std::uint32_t>(sizeof(robotd::driver::Feedback)),                                      \
-        plugin_name,                                                                                      \
-        plugin_version,                                                                                   \
-        []() noexcept -> robotd::driver::Driver* {                                                         \
-          try {                                                                                           \
-            return new DriverClass();                                                                     \
-          } catch (...) {                                                                                 \
-            return nullptr;                                                                               \
-          }                                                                                               \
-        },                                                                                                \
-        [](robotd::driver::Driver* driver) noexcept { delete driver; }};                                   \
-    return &info;                                                                                         \
+#define ROBOTD_DRIVER_PLUGIN(DriverClass, plugin_name, plugin_version)                                             \
+  extern "C" __attribute__((visibility("default"))) const robotd::driver::PluginInfo* robotd_driver_plugin() {     \
+    static const robotd::driver::PluginInfo info{robotd::driver::kAbiVersion,                                      \
+                                                 static_cast<std::uint32_t>(sizeof(robotd::driver::CommandFrame)), \
+                                                 static_cast<std::uint32_t>(sizeof(robotd::driver::Feedback)),     \
+                                                 plugin_name,                                                      \
+                                                 plugin_version,                                                   \
+                                                 []() noexcept -> robotd::driver::Driver* {                        \
+                                                   try {                                                           \
+                                                     return new DriverClass();                                     \
+                                                   } catch (...) {                                                 \
+                                                     return nullptr;                                               \
+                                                   }                                                               \
+                                                 },                                                                \
+                                                 [](robotd::driver::Driver* driver) noexcept { delete driver; }};  \
+    return &info;                                                                                                  \
   }

@@ -33,8 +33,8 @@ struct JointCommand {
 /// What robotd asks of the device for one tick.
 struct CommandFrame {
   std::uint64_t tick = 0;
-  std::int64_t tick_deadline_ns = 0;  // CLOCK_MONOTONIC time this tick was due
-  bool estop = false;                 // robotd's e-stop is latched: trigger the vendor e-stop
+  std::int64_t tick_deadline_ns = 0;        // CLOCK_MONOTONIC time this tick was due
+  bool estop = false;                       // robotd's e-stop is latched: trigger the vendor e-stop
   std::int64_t newest_command_sent_ns = 0;  // client send time of the newest command applied
                                             // this tick (CLOCK_MONOTONIC), 0 if none
   std::size_t joint_count = 0;

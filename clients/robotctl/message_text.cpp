@@ -1,0 +1,144 @@
+#include "message_text.hpp"
+
+#include <cstdint>
+#include <utility>
+
+#include "text_format.hpp"
+#include "text_table.hpp"
+
+namespace robotctl {
+namespace {
+
+// "+0.5000" / "-0.5000"; a value that rounds to zero prints as "+0.0000", never "-0.0000".
+std::string signed_fixed(double value, int decimals) {
+  const std::string text = fixed(value, decimals);
+  if (text.front() != '-') return "+" + text;
+  return text.find_first_not_of("-0.") == std::string::npos ? "+" + text.substr(1) : text;
+}
+
+std::string vector_text(const robotd::Vector3& v) {
+  return "x " + signed_fixed(v.x, 4) + "  y " + signed_fixed(v.y, 4) + "  z " + signed_fixed(v.z, 4);
+}
+
+std::string labelled(const std::string& label, const std::string& value) {
+  std::string line = "  " + label;
+  line.append(label.size() < 13 ? 13 - label.size() : 1, ' ');
+  return line + value + "\n";
+}
+
+// "p50 12.3  p99 45.6  max 120.0 µs".
+std::string percentiles_text(float p50_us, float p99_us, float max_us) {
+  return "p50 " + fixed(p50_us, 1) + "  p99 " + fixed(p99_us, 1) + "  max " + fixed(max_us, 1) + " µs";
+}
+
+// The rejection counters that are not zero, by reason ("not_owner", ...).
+std::vector<std::pair<std::string, std::uint64_t>> nonzero_rejections(const robotd::CommandCounters& counters) {
+  const std::vector<std::pair<std::string, std::uint64_t>> all = {
+      {"unknown_session", counters.rejected_unknown_session},
+      {"wrong_device", counters.rejected_wrong_device},
+      {"not_owner", counters.rejected_not_owner},
+      {"unknown_motor", counters.rejected_unknown_motor},
+      {"malformed", counters.rejected_malformed},
+      {"non_finite", counters.rejected_non_finite},
+      {"out_of_range", counters.rejected_out_of_range},
+      {"estop", counters.rejected_estop},
+      {"fault", counters.rejected_fault},
+      {"dropped_stale", counters.dropped_stale},
+  };
+  std::vector<std::pair<std::string, std::uint64_t>> nonzero;
+  for (const auto& entry : all) {
+    if (entry.second > 0) nonzero.push_back(entry);
+  }
+  return nonzero;
+}
+
+}  // namespace
+
+std::string device_table(const std::vector<robotd::DeviceInfo>& devices) {
+  TextTable table({"NAME", "DRIVER", "MODEL", "JOINTS", "RATE Hz", "CONTROL MODES", "STATE"});
+  for (const auto& device : devices) {
+    table.add_row({device.name, device.driver + (device.driver_version.empty() ? "" : " " + device.driver_version),
+                   device.model, std::to_string(device.joint_names.size()), fixed(device.rate_hz, 0),
+                   join(device.control_modes, ","), std::string(robotd::to_string(device.state))});
+  }
+  return table.render();
+}
+
+std::string state_text(const robotd::DeviceStatus& status) {
+  std::string name(robotd::to_string(status.state));
+  if (status.state_text.empty() || status.state_text == name) return name;
+  if (status.state_text.rfind(name, 0) == 0) return status.state_text;
+  return name + " — " + status.state_text;
+}
+
+std::string device_status_text(const robotd::DeviceStatus& status) {
+  const robotd::LoopStatistics& loop = status.loop;
+  std::string text = status.device + "  " + state_text(status) + "\n";
+  std::vector<std::string> driver_values;
+  for (const auto& value : status.driver_values) driver_values.push_back(value.key + "=" + value.value);
+  text += labelled("driver", status.driver + (driver_values.empty() ? "" : ": " + join(driver_values, " ")));
+  text += labelled("fault", status.fault_code == 0 && status.fault_text.empty()
+                                ? "none"
+                                : "code " + std::to_string(status.fault_code) + ": " + status.fault_text);
+  text += labelled("e-stop", status.estop_engaged ? "engaged" : "clear");
+  text += labelled("loop", fixed(loop.rate_hz, 0) + " Hz, realtime " + yes_no(loop.realtime) + ", " +
+                               std::to_string(loop.ticks) + " ticks, " + std::to_string(loop.overruns) +
+                               " overruns (timing over the last " + std::to_string(loop.window_ticks) + " ticks)");
+  text +=
+      labelled("wake", percentiles_text(loop.wake_latency_p50_us, loop.wake_latency_p99_us, loop.wake_latency_max_us));
+  text += labelled("execution", percentiles_text(loop.execution_p50_us, loop.execution_p99_us, loop.execution_max_us));
+  text += labelled("period", "p50 " + fixed(loop.period_p50_us, 1) + "  p99 " + fixed(loop.period_p99_us, 1) + " µs");
+  if (loop.rt_heap_allocations >= 0) {
+    text += labelled("rt heap", std::to_string(loop.rt_heap_allocations) + " allocations in the loop");
+  }
+  text += labelled("commands",
+                   "received " + std::to_string(status.commands.received) + ", accepted " +
+                       std::to_string(status.commands.accepted) +
+                       (status.commands.clamped > 0 ? ", clamped " + std::to_string(status.commands.clamped) : ""));
+  std::vector<std::string> rejections;
+  for (const auto& [reason, count] : nonzero_rejections(status.commands)) {
+    rejections.push_back(reason + " " + std::to_string(count));
+  }
+  if (!rejections.empty()) text += labelled("rejected", join(rejections, ", "));
+  return text;
+}
+
+std::string behavior_text(robotd::Behavior requested, robotd::Behavior applied) {
+  std::string text(robotd::to_string(requested));
+  if (applied != requested) text += " → " + std::string(robotd::to_string(applied));
+  return text;
+}
+
+std::string session_table(const robotd::SessionStatus& status) {
+  if (status.sessions.empty()) return "no active sessions\n";
+  TextTable table({"UUID", "NODE", "DEVICE", "MOTORS", "MODE", "ON TIMEOUT", "TIME LEFT", "COMMANDS"});
+  for (const auto& session : status.sessions) {
+    table.add_row({session.uuid, session.node_name, session.device, id_ranges(session.motor_ids),
+                   std::string(robotd::to_string(session.control_mode)),
+                   behavior_text(session.default_behavior, session.applied_behavior),
+                   std::to_string(session.time_left_ms) + " ms", std::to_string(session.commands_accepted)});
+  }
+  return table.render();
+}
+
+std::string joint_state_text(const robotd::JointState& state) {
+  TextTable table({"  JOINT", "POSITION rad", "VELOCITY rad/s", "EFFORT N·m"});
+  for (std::size_t j = 0; j < state.name.size(); ++j) {
+    const auto value = [j](const std::vector<double>& values, int decimals) {
+      return j < values.size() ? signed_fixed(values[j], decimals) : "-";
+    };
+    table.add_row({"  " + state.name[j], value(state.position, 4), value(state.velocity, 4), value(state.effort, 3)});
+  }
+  return state.header.frame_id + "  stamp " + stamp_text(state.header.stamp) + "\n" + table.render();
+}
+
+std::string imu_text(const robotd::Imu& imu) {
+  const robotd::Quaternion& q = imu.orientation;
+  return imu.header.frame_id + "  stamp " + stamp_text(imu.header.stamp) + "\n" +
+         labelled("orientation", "x " + signed_fixed(q.x, 4) + "  y " + signed_fixed(q.y, 4) + "  z " +
+                                     signed_fixed(q.z, 4) + "  w " + signed_fixed(q.w, 4)) +
+         labelled("angular", vector_text(imu.angular_velocity) + " rad/s") +
+         labelled("linear", vector_text(imu.linear_acceleration) + " m/s²");
+}
+
+}  // namespace robotctl

@@ -1,0 +1,26 @@
+// robotd's messages as robotctl prints them for people.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "robotd/messages.hpp"
+
+namespace robotctl {
+
+/// One row per device: name, driver and version, model, joints, rate, control modes, state.
+std::string device_table(const std::vector<robotd::DeviceInfo>& devices);
+/// A block: state, fault, e-stop, loop timing, command counters, driver values.
+std::string device_status_text(const robotd::DeviceStatus& status);
+/// One row per session (uuid, node, device, motors, mode, timeout fallback, time left, commands
+/// accepted), or "no active sessions".
+std::string session_table(const robotd::SessionStatus& status);
+std::string joint_state_text(const robotd::JointState& state);
+std::string imu_text(const robotd::Imu& imu);
+
+/// The state name, followed by robotd's explanation when it says more ("ESTOP (e-stop engaged by ...)").
+std::string state_text(const robotd::DeviceStatus& status);
+/// "DAMPING", or "DAMPING → KEEP" when the device applies something other than what was asked.
+std::string behavior_text(robotd::Behavior requested, robotd::Behavior applied);
+
+}  // namespace robotctl

@@ -1,0 +1,595 @@
+// One device's RT loop, driven tick by tick at synthetic times: a recording driver stands in
+// for the hardware, and the test plays the service side (control events, command snapshots,
+// e-stop, maintenance, shutdown) through the DeviceChannel exactly as robotd does.
+#include "device/control_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "device_models.hpp"
+
+namespace robotd::device {
+namespace {
+
+using driver::JointCommandKind;
+using ::testing::HasSubstr;
+
+constexpr std::int64_t kMsNs = 1'000'000;
+constexpr std::int64_t kPeriodNs = kMsNs;  // 1 kHz
+constexpr double kDt = 0.001;
+
+// Returns scripted feedback and records every frame it is asked to write.
+class RecordingDriver final : public driver::Driver {
+ public:
+  RecordingDriver() { frames.reserve(4096); }
+
+  Result<void> configure(const nlohmann::json& /*params*/) override { return {}; }
+  driver::DeviceDescription describe() const override { return {}; }
+  Result<void> connect() override { return {}; }
+  void disconnect() noexcept override {}
+  Result<void> recover() override { return {}; }
+  Result<void> reset_zero(std::span<const int> /*joints*/) override { return {}; }
+
+  driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override {
+    ++reads;
+    if (read_result == driver::IoResult::kOk) out = feedback;
+    if (read_result == driver::IoResult::kFault || read_result == driver::IoResult::kDisconnected) {
+      fault = fault_to_report;
+    }
+    return read_result;
+  }
+  driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& /*fault*/) noexcept override {
+    frames.push_back(command);
+    return driver::IoResult::kOk;
+  }
+
+  Result<nlohmann::json> call(const std::string& op, const nlohmann::json& /*args*/) override {
+    return make_error(ErrorCode::kRefused, "no op " + op);
+  }
+  driver::Diagnostics diagnostics() const override { return {}; }
+
+  driver::Feedback feedback{};
+  driver::IoResult read_result = driver::IoResult::kOk;
+  driver::FaultInfo fault_to_report{};
+  std::vector<driver::CommandFrame> frames;
+  int reads = 0;
+};
+
+control::JointTargetUpdate position_target(std::uint8_t joint, float position) {
+  control::JointTargetUpdate update;
+  update.joint = joint;
+  update.fields = control::kHasPosition;
+  update.position = position;
+  return update;
+}
+
+control::JointTargetUpdate torque_target(std::uint8_t joint, float torque) {
+  control::JointTargetUpdate update;
+  update.joint = joint;
+  update.fields = control::kHasTorque;
+  update.torque = torque;
+  return update;
+}
+
+// Device "legs": 3 joints, torque-capable, can damp and let go; position ±2 rad, 1 rad/s,
+// 10 rad/s², default gains kp 50, kd 2. Feedback silence faults after 50 ms; the shutdown
+// stop lasts 20 ms.
+class ControlLoopTest : public ::testing::Test {
+ protected:
+  ControlLoopTest() {
+    settings_.rate_hz = 1000;
+    settings_.feedback_timeout_ns = 50 * kMsNs;
+    settings_.safe_behavior = Behavior::kDamping;
+    settings_.shutdown_behavior = Behavior::kDamping;
+    settings_.shutdown_duration_ns = 20 * kMsNs;
+    settings_.warmup_ticks = 1'000'000;
+    loop_ = std::make_unique<ControlLoop>(driver_, model_, *channel_, settings_);
+  }
+
+  void tick() {
+    now_ns_ += kPeriodNs;
+    loop_->tick(now_ns_, now_ns_);
+  }
+  void run_ms(int ms) {
+    for (int i = 0; i < ms; ++i) tick();
+  }
+
+  const driver::CommandFrame& frame() const {
+    static const driver::CommandFrame kNone{};
+    EXPECT_FALSE(driver_.frames.empty()) << "the loop wrote no frame";
+    return driver_.frames.empty() ? kNone : driver_.frames.back();
+  }
+  const driver::JointCommand& joint(std::size_t j) const { return frame().joints[j]; }
+
+  void set_measured(std::size_t j, double position) { driver_.feedback.joints[j].position_rad = position; }
+
+  ControlEvent session_start(std::uint8_t slot, std::uint32_t generation, ControlMode mode,
+                             std::initializer_list<std::size_t> motors, Behavior fallback = Behavior::kDamping,
+                             std::int64_t timeout_ns = 1000 * kMsNs) const {
+    ControlEvent event;
+    event.type = ControlEvent::Type::kSessionStart;
+    event.slot = slot;
+    event.generation = generation;
+    event.mode = mode;
+    event.behavior = fallback;
+    event.timeout_ns = timeout_ns;
+    event.granted_ns = now_ns_;
+    for (const auto motor : motors) event.motors.set(motor);
+    event.default_kp.fill(kNoGain);
+    event.default_kd.fill(kNoGain);
+    return event;
+  }
+  void start(const ControlEvent& event) { ASSERT_TRUE(channel_->post(event)); }
+  void start(std::uint8_t slot, std::uint32_t generation, ControlMode mode, std::initializer_list<std::size_t> motors) {
+    start(session_start(slot, generation, mode, motors));
+  }
+  void release(std::uint8_t slot, std::uint32_t generation, Behavior behavior) {
+    ControlEvent event;
+    event.type = ControlEvent::Type::kSessionRelease;
+    event.slot = slot;
+    event.generation = generation;
+    event.behavior = behavior;
+    ASSERT_TRUE(channel_->post(event));
+  }
+
+  // What the command intake does with an accepted command: update the working snapshot and
+  // publish it whole.
+  void send(std::uint8_t slot, std::uint32_t generation, const control::JointTargetUpdate& update) {
+    JointTarget& target = snapshot_.joints[update.joint];
+    target.generation = generation;
+    target.sequence = ++sequence_;
+    target.received_ns = now_ns_;
+    target.update = update;
+    keepalive(slot, generation);
+  }
+  void keepalive(std::uint8_t slot, std::uint32_t generation) {
+    snapshot_.slots[slot] = SlotActivity{generation, now_ns_};
+    channel_->commands.write_buffer() = snapshot_;
+    channel_->commands.publish();
+  }
+
+  std::vector<LoopEvent> loop_events() {
+    std::vector<LoopEvent> events;
+    while (auto event = channel_->loop_events.pop()) events.push_back(*event);
+    return events;
+  }
+  std::vector<LoopEvent> loop_events_of(LoopEvent::Type type) {
+    std::vector<LoopEvent> matching;
+    for (const auto& event : loop_events()) {
+      if (event.type == type) matching.push_back(event);
+    }
+    return matching;
+  }
+
+  DeviceState device_state() const { return channel_->device_state.load(); }
+
+  control::DeviceModel model_ = test::torque_chain("legs", 3);
+  RecordingDriver driver_;
+  std::unique_ptr<DeviceChannel> channel_ = std::make_unique<DeviceChannel>();
+  LoopSettings settings_;
+  std::unique_ptr<ControlLoop> loop_;
+  std::int64_t now_ns_ = 1000 * kMsNs;
+  CommandSnapshot snapshot_{};
+  std::uint64_t sequence_ = 0;
+};
+
+TEST_F(ControlLoopTest, OwnedJointsFollowTheirTargetsInLimitedStepsWhileUnownedJointsStayUndriven) {
+  start(0, 1, ControlMode::kPosition, {0, 1});
+  tick();
+  EXPECT_TRUE(joint(0).owned);
+  EXPECT_TRUE(joint(1).owned);
+  EXPECT_FALSE(joint(2).owned);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kNone);  // owned, but nothing commanded yet
+
+  send(0, 1, position_target(0, 1.0F));
+  send(0, 1, position_target(1, -0.5F));
+  const std::size_t first = driver_.frames.size();
+  run_ms(200);
+  double previous[2] = {0.0, 0.0};
+  for (std::size_t f = first; f < driver_.frames.size(); ++f) {
+    const auto& joints = driver_.frames[f].joints;
+    for (std::size_t j = 0; j < 2; ++j) {
+      ASSERT_EQ(joints[j].kind, JointCommandKind::kPosition) << "frame " << f;
+      ASSERT_LE(std::fabs(joints[j].position_rad - previous[j]), 1.0 * kDt + 1e-12) << "frame " << f;
+      previous[j] = joints[j].position_rad;
+    }
+    ASSERT_EQ(joints[2].kind, JointCommandKind::kNone) << "frame " << f;
+  }
+  EXPECT_GT(joint(0).position_rad, 0.1);
+  EXPECT_LT(joint(1).position_rad, -0.1);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 50.0);  // the joint's default gains
+  EXPECT_DOUBLE_EQ(joint(0).kd, 2.0);
+}
+
+TEST_F(ControlLoopTest, TargetReachesTheDriverOnTheTickAfterItIsPublished) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 0.5F));
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);
+  EXPECT_GT(joint(0).position_rad, 0.0);
+}
+
+TEST_F(ControlLoopTest, PositionTargetsWithoutGainsUseTheSessionsDefaultGains) {
+  ControlEvent event = session_start(0, 1, ControlMode::kPosition, {0, 1});
+  event.default_kp[0] = 70.0F;
+  event.default_kd[1] = 4.0F;
+  start(event);
+  tick();
+  send(0, 1, position_target(0, 0.2F));
+  send(0, 1, position_target(1, 0.2F));
+  tick();
+  EXPECT_DOUBLE_EQ(joint(0).kp, 70.0);
+  EXPECT_DOUBLE_EQ(joint(0).kd, 2.0);
+  EXPECT_DOUBLE_EQ(joint(1).kp, 50.0);
+  EXPECT_DOUBLE_EQ(joint(1).kd, 4.0);
+}
+
+TEST_F(ControlLoopTest, TorqueSessionCommandsPureTorque) {
+  set_measured(2, 0.25);
+  start(0, 1, ControlMode::kTorque, {2});
+  tick();
+  send(0, 1, torque_target(2, 1.5F));
+  tick();
+  EXPECT_EQ(joint(2).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(2).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(2).kd, 0.0);
+  EXPECT_DOUBLE_EQ(joint(2).torque_nm, 1.5);
+  EXPECT_DOUBLE_EQ(joint(2).position_rad, 0.25);
+}
+
+TEST_F(ControlLoopTest, MixedSessionCommandsImpedanceWithTheCommandsGainsAndTorque) {
+  start(0, 1, ControlMode::kMixed, {1});
+  tick();
+  control::JointTargetUpdate update;
+  update.joint = 1;
+  update.fields = control::kHasPosition | control::kHasKp | control::kHasKd | control::kHasTorque;
+  update.position = 0.0F;
+  update.kp = 30.0F;
+  update.kd = 1.5F;
+  update.torque = 0.75F;
+  send(0, 1, update);
+  tick();
+  EXPECT_EQ(joint(1).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(1).kp, 30.0);
+  EXPECT_DOUBLE_EQ(joint(1).kd, 1.5);
+  EXPECT_DOUBLE_EQ(joint(1).torque_nm, 0.75);
+  EXPECT_DOUBLE_EQ(joint(1).position_rad, 0.0);
+}
+
+TEST_F(ControlLoopTest, SilentSessionTimesOutIntoItsFallbackAndIsReported) {
+  ControlEvent event = session_start(0, 1, ControlMode::kPosition, {0}, Behavior::kDamping, 20 * kMsNs);
+  event.default_kd[0] = 3.5F;
+  start(event);
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(20);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);  // 20 ms of silence is not yet too much
+  EXPECT_TRUE(loop_events_of(LoopEvent::Type::kSessionTimedOut).empty());
+
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(0).kd, 3.5);
+  EXPECT_FALSE(joint(0).owned);
+  const auto timeouts = loop_events_of(LoopEvent::Type::kSessionTimedOut);
+  ASSERT_EQ(timeouts.size(), 1u);
+  EXPECT_EQ(timeouts[0].slot, 0);
+  EXPECT_EQ(timeouts[0].generation, 1u);
+  EXPECT_EQ(timeouts[0].behavior, Behavior::kDamping);
+  EXPECT_EQ(timeouts[0].silence_ns, 21 * kMsNs);
+}
+
+TEST_F(ControlLoopTest, KeepalivesKeepASessionAlive) {
+  start(session_start(0, 1, ControlMode::kPosition, {0}, Behavior::kDamping, 20 * kMsNs));
+  tick();
+  send(0, 1, position_target(0, 0.5F));
+  for (int i = 0; i < 10; ++i) {
+    run_ms(15);
+    keepalive(0, 1);
+  }
+  EXPECT_TRUE(loop_events_of(LoopEvent::Type::kSessionTimedOut).empty());
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);
+  EXPECT_TRUE(joint(0).owned);
+}
+
+TEST_F(ControlLoopTest, SessionThatNeverCommandsTimesOutFromItsGrant) {
+  start(session_start(0, 1, ControlMode::kPosition, {0}, Behavior::kKeep, 20 * kMsNs));
+  run_ms(21);
+  const auto timeouts = loop_events_of(LoopEvent::Type::kSessionTimedOut);
+  ASSERT_EQ(timeouts.size(), 1u);
+  EXPECT_EQ(timeouts[0].silence_ns, 21 * kMsNs);
+  EXPECT_EQ(timeouts[0].behavior, Behavior::kKeep);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);  // KEEP: held where it is
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 0.0);
+}
+
+TEST_F(ControlLoopTest, TimeoutDampingWithoutSessionGainsUsesTheJointsDefaultDamping) {
+  start(session_start(0, 1, ControlMode::kPosition, {1}, Behavior::kDamping, 20 * kMsNs));
+  tick();
+  send(0, 1, position_target(1, 0.5F));
+  run_ms(21);
+  EXPECT_EQ(joint(1).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(1).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(1).kd, 2.0);
+}
+
+TEST_F(ControlLoopTest, ReleaseAppliesTheReleaseBehaviourAndFreesTheJoint) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(10);
+  release(0, 1, Behavior::kZeroTorque);
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(0).kd, 0.0);
+  EXPECT_DOUBLE_EQ(joint(0).torque_nm, 0.0);
+  EXPECT_FALSE(joint(0).owned);
+  const auto released = loop_events_of(LoopEvent::Type::kSessionReleased);
+  ASSERT_EQ(released.size(), 1u);
+  EXPECT_EQ(released[0].generation, 1u);
+  EXPECT_EQ(released[0].behavior, Behavior::kZeroTorque);
+}
+
+TEST_F(ControlLoopTest, ReleaseNamingAnEarlierGenerationOfTheSlotIsIgnored) {
+  start(0, 2, ControlMode::kPosition, {0});
+  tick();
+  send(0, 2, position_target(0, 1.0F));
+  tick();
+  release(0, 1, Behavior::kZeroTorque);
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);
+  EXPECT_TRUE(joint(0).owned);
+  EXPECT_TRUE(loop_events_of(LoopEvent::Type::kSessionReleased).empty());
+}
+
+TEST_F(ControlLoopTest, EstopDampsActiveJointsAndLeavesIdleJointsUndriven) {
+  start(0, 1, ControlMode::kPosition, {0, 1});
+  tick();
+  send(0, 1, position_target(0, 1.0F));  // joint 1 is owned but never commanded
+  run_ms(10);
+  channel_->estop.store(true);
+  tick();
+  EXPECT_TRUE(frame().estop);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(0).kd, 2.0);
+  EXPECT_EQ(joint(1).kind, JointCommandKind::kNone);
+  EXPECT_EQ(joint(2).kind, JointCommandKind::kNone);
+  EXPECT_EQ(device_state(), DeviceState::kEstop);
+  EXPECT_EQ(loop_events_of(LoopEvent::Type::kEstopApplied).size(), 1u);
+}
+
+TEST_F(ControlLoopTest, TargetsAreNotAppliedWhileEstopped) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  tick();
+  channel_->estop.store(true);
+  tick();
+  send(0, 1, position_target(0, -1.0F));
+  run_ms(5);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+}
+
+TEST_F(ControlLoopTest, EstopResetHoldsTrackingJointsWhereTheyAreMeasuredInsteadOfResumingTheTarget) {
+  start(0, 1, ControlMode::kPosition, {0, 1});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(50);
+  channel_->estop.store(true);
+  tick();
+  set_measured(0, 0.3);  // the damped joint sagged while e-stopped
+  run_ms(5);
+  channel_->estop.store(false);
+  tick();
+  EXPECT_FALSE(frame().estop);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 0.3);
+  EXPECT_DOUBLE_EQ(joint(0).velocity_rad_s, 0.0);
+  EXPECT_EQ(joint(1).kind, JointCommandKind::kNone);  // idle before, idle after
+  EXPECT_EQ(device_state(), DeviceState::kRunning);
+  EXPECT_EQ(loop_events_of(LoopEvent::Type::kEstopCleared).size(), 1u);
+  run_ms(100);
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 0.3);
+}
+
+TEST_F(ControlLoopTest, DriverFaultLatchesWithItsTextAndFreezesTheBlackBox) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(10);
+  driver_.read_result = driver::IoResult::kFault;
+  driver_.fault_to_report.set(42, "overcurrent on joint 0");
+  tick();
+  EXPECT_EQ(device_state(), DeviceState::kFault);
+  const std::vector<LoopEvent> events = loop_events();
+  const auto latched = std::find_if(events.begin(), events.end(),
+                                    [](const LoopEvent& e) { return e.type == LoopEvent::Type::kFaultLatched; });
+  ASSERT_NE(latched, events.end());
+  EXPECT_EQ(latched->fault.code, 42);
+  EXPECT_STREQ(latched->fault.text.data(), "overcurrent on joint 0");
+  EXPECT_TRUE(std::any_of(events.begin(), events.end(),
+                          [](const LoopEvent& e) { return e.type == LoopEvent::Type::kBlackBoxFrozen; }));
+  EXPECT_TRUE(channel_->black_box_frozen.load());
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);  // damped: the safe behaviour
+
+  const std::uint64_t recorded = channel_->black_box_next.load();
+  driver_.read_result = driver::IoResult::kOk;  // the fault stays latched though the link recovers
+  run_ms(10);
+  EXPECT_EQ(device_state(), DeviceState::kFault);
+  EXPECT_EQ(channel_->black_box_next.load(), recorded);
+}
+
+TEST_F(ControlLoopTest, LostLinkWithoutAFaultCodeLatchesTheLinkLostFault) {
+  tick();
+  driver_.read_result = driver::IoResult::kDisconnected;
+  driver_.fault_to_report.set(0, "socket closed");
+  tick();
+  EXPECT_EQ(device_state(), DeviceState::kFault);
+  const auto latched = loop_events_of(LoopEvent::Type::kFaultLatched);
+  ASSERT_EQ(latched.size(), 1u);
+  EXPECT_EQ(latched[0].fault.code, kFaultLinkLost);
+  EXPECT_STREQ(latched[0].fault.text.data(), "socket closed");
+}
+
+TEST_F(ControlLoopTest, BlackBoxRecordsEveryTick) {
+  run_ms(3);
+  ASSERT_EQ(channel_->black_box_next.load(), 3u);
+  const BlackBoxRecord& last = channel_->black_box[2];
+  EXPECT_EQ(last.tick, 3u);
+  EXPECT_EQ(last.time_ns, now_ns_);
+  EXPECT_EQ(last.joint_count, 3);
+}
+
+TEST_F(ControlLoopTest, SilentFeedbackLatchesTheNoFeedbackFault) {
+  tick();
+  driver_.read_result = driver::IoResult::kNoNewData;
+  run_ms(50);
+  EXPECT_EQ(device_state(), DeviceState::kRunning);  // 50 ms is the limit, not beyond it
+  tick();
+  EXPECT_EQ(device_state(), DeviceState::kFault);
+  const auto latched = loop_events_of(LoopEvent::Type::kFaultLatched);
+  ASSERT_EQ(latched.size(), 1u);
+  EXPECT_EQ(latched[0].fault.code, kFaultNoFeedback);
+  EXPECT_THAT(latched[0].fault.text.data(), HasSubstr("no feedback from the driver for 51 ms"));
+}
+
+TEST_F(ControlLoopTest, NothingIsWrittenBeforeTheFirstFeedback) {
+  driver_.read_result = driver::IoResult::kNoNewData;
+  run_ms(5);
+  EXPECT_TRUE(driver_.frames.empty());
+  EXPECT_EQ(device_state(), DeviceState::kConnecting);
+  driver_.read_result = driver::IoResult::kOk;
+  tick();
+  EXPECT_EQ(driver_.frames.size(), 1u);
+  EXPECT_EQ(device_state(), DeviceState::kRunning);
+}
+
+TEST_F(ControlLoopTest, MaintenanceStopsDriverIoAndClearingItWithTheFaultHoldsJointsWhereMeasured) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(20);
+  driver_.read_result = driver::IoResult::kFault;
+  driver_.fault_to_report.set(7, "encoder error");
+  tick();
+  ASSERT_EQ(device_state(), DeviceState::kFault);
+
+  channel_->maintenance_requested.store(true);
+  tick();
+  EXPECT_TRUE(channel_->maintenance_active.load());
+  EXPECT_EQ(device_state(), DeviceState::kMaintenance);
+  const int reads = driver_.reads;
+  const std::size_t writes = driver_.frames.size();
+  run_ms(10);
+  EXPECT_EQ(driver_.reads, reads);
+  EXPECT_EQ(driver_.frames.size(), writes);
+
+  // The maintenance thread recovered the device; the joint now rests at 0.2 rad.
+  driver_.read_result = driver::IoResult::kOk;
+  set_measured(0, 0.2);
+  channel_->maintenance_clears_fault.store(true);
+  channel_->maintenance_requested.store(false);
+  tick();
+  EXPECT_FALSE(channel_->maintenance_active.load());
+  EXPECT_EQ(device_state(), DeviceState::kRunning);
+  const LoopState* state = channel_->state.take();
+  ASSERT_NE(state, nullptr);
+  EXPECT_EQ(state->fault.code, 0);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 0.2);
+  EXPECT_DOUBLE_EQ(joint(0).velocity_rad_s, 0.0);
+}
+
+TEST_F(ControlLoopTest, TargetOfAnEndedSessionIsNotAppliedAndCountsAsStale) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  release(0, 1, Behavior::kZeroTorque);
+  tick();
+  send(0, 1, position_target(0, 1.0F));  // accepted just before the release, delivered after
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+  EXPECT_EQ(channel_->dropped_stale.load(), 1u);
+}
+
+TEST_F(ControlLoopTest, TargetOfAReplacedSessionIsDroppedAndTheNewSessionsTargetIsApplied) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  release(0, 1, Behavior::kKeep);
+  start(1, 2, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, -1.0F));  // the old session's late target
+  tick();
+  EXPECT_EQ(channel_->dropped_stale.load(), 1u);
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 0.0);  // held, not moving toward -1
+  send(1, 2, position_target(0, 1.0F));
+  tick();
+  EXPECT_GT(joint(0).position_rad, 0.0);
+  EXPECT_EQ(channel_->dropped_stale.load(), 1u);
+}
+
+TEST_F(ControlLoopTest, TargetThatArrivesBeforeItsSessionStartIsAppliedOnceTheStartArrives) {
+  // The service posts the start event before the client can command, but the loop may take the
+  // command snapshot in the same tick after it drained the events: the target must wait, not be
+  // discarded.
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kNone);
+  EXPECT_EQ(channel_->dropped_stale.load(), 0u);
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kPosition);
+  EXPECT_GT(joint(0).position_rad, 0.0);
+  EXPECT_EQ(channel_->dropped_stale.load(), 0u);
+}
+
+TEST_F(ControlLoopTest, ShutdownEndsSessionsAppliesTheShutdownBehaviourAndFinishesAfterItsDuration) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(10);
+  channel_->shutdown_requested.store(true);
+  tick();
+  const auto ended = loop_events_of(LoopEvent::Type::kSessionEndedByShutdown);
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].behavior, Behavior::kDamping);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(0).kd, 2.0);
+  EXPECT_EQ(joint(1).kind, JointCommandKind::kNone);
+  EXPECT_FALSE(loop_->finished());
+
+  run_ms(19);
+  EXPECT_FALSE(loop_->finished());
+  tick();
+  EXPECT_TRUE(loop_->finished());
+  EXPECT_EQ(device_state(), DeviceState::kStopped);
+}
+
+TEST_F(ControlLoopTest, StateIsPublishedEveryTickWithTheLatestFeedback) {
+  set_measured(1, -0.4);
+  run_ms(2);
+  const LoopState* state = channel_->state.take();
+  ASSERT_NE(state, nullptr);
+  EXPECT_EQ(state->tick, 2u);
+  EXPECT_EQ(state->time_ns, now_ns_);
+  EXPECT_EQ(state->state, DeviceState::kRunning);
+  EXPECT_EQ(state->feedback.joint_count, 3u);
+  EXPECT_DOUBLE_EQ(state->feedback.joints[1].position_rad, -0.4);
+  EXPECT_EQ(channel_->ticks.load(), 2u);
+}
+
+}  // namespace
+}  // namespace robotd::device
