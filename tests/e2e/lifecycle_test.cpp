@@ -150,5 +150,43 @@ TEST_F(LifecycleTest, ListDevicesDescribesWhatEachDeviceSupports) {
   EXPECT_TRUE(has_recover);
 }
 
+TEST_F(LifecycleTest, JointLimitOverridesNarrowTheDriverLimitsButMayNotWidenThem) {
+  start_robotd(
+      sim_arm_config(domain_.id(), nullptr,
+                     {{"joint_limits", {{"joint2", {{"position_max_rad", 1.0}, {"velocity_max_rad_s", 0.5}}}}}}));
+  auto devices = client().list_devices();
+  ASSERT_TRUE(devices);
+  EXPECT_EQ(devices.value()[0].position_max[1], 1.0);
+  EXPECT_EQ(devices.value()[0].velocity_max[1], 0.5);
+  EXPECT_EQ(devices.value()[0].position_max[0], 2.5);
+
+  nlohmann::json widening = sim_arm_config(domain_.id());
+  widening["devices"][0]["joint_limits"] = {{"joint2", {{"effort_max_nm", 1000}}}};
+  robotd_->terminate();
+  RobotdProcess refused(widening);
+  std::optional<int> status;
+  for (int i = 0; i < 300 && !status; ++i) {
+    status = refused.exit_status();
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 1);
+  EXPECT_NE(refused.log().find("devices[0].joint_limits.joint2.effort_max_nm: 1000 is beyond the driver's limit 40"),
+            std::string::npos)
+      << refused.log();
+}
+
+// The example program of clients/cpp/examples runs as documented against the default arm.
+TEST_F(LifecycleTest, ExampleProgramMovesTheArmAndReleases) {
+  start_robotd();
+  ChildProcess example("/usr/bin/env", {"ROBOTD_DOMAIN_ID=" + std::to_string(domain_.id()), EXAMPLE_MOVE_ARM});
+  std::vector<std::string> lines;
+  while (auto line = example.read_line(15s)) lines.push_back(*line);
+  ASSERT_GE(lines.size(), 8U) << "the example printed too little";
+  EXPECT_EQ(lines.front().rfind("session ", 0), 0U) << lines.front();
+  EXPECT_NE(lines[1].find("+0.000 rad -> +0.500 rad"), std::string::npos) << lines[1];
+  EXPECT_NE(lines.back().find("released 6 motor(s) of 'arm'"), std::string::npos) << lines.back();
+}
+
 }  // namespace
 }  // namespace robotd::testing
