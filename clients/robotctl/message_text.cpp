@@ -43,7 +43,6 @@ std::vector<std::pair<std::string, std::uint64_t>> nonzero_rejections(const robo
       {"out_of_range", counters.rejected_out_of_range},
       {"estop", counters.rejected_estop},
       {"fault", counters.rejected_fault},
-      {"dropped_stale", counters.dropped_stale},
   };
   std::vector<std::pair<std::string, std::uint64_t>> nonzero;
   for (const auto& entry : all) {
@@ -91,10 +90,13 @@ std::string device_status_text(const robotd::DeviceStatus& status) {
   if (loop.rt_heap_allocations >= 0) {
     text += labelled("rt heap", std::to_string(loop.rt_heap_allocations) + " allocations in the loop");
   }
-  text += labelled("commands",
-                   "received " + std::to_string(status.commands.received) + ", accepted " +
-                       std::to_string(status.commands.accepted) +
-                       (status.commands.clamped > 0 ? ", clamped " + std::to_string(status.commands.clamped) : ""));
+  text += labelled(
+      "commands", "received " + std::to_string(status.commands.received) + ", accepted " +
+                      std::to_string(status.commands.accepted) +
+                      (status.commands.clamped > 0 ? ", clamped " + std::to_string(status.commands.clamped) : "") +
+                      (status.commands.dropped_stale > 0
+                           ? ", " + std::to_string(status.commands.dropped_stale) + " arrived after their session ended"
+                           : ""));
   std::vector<std::string> rejections;
   for (const auto& [reason, count] : nonzero_rejections(status.commands)) {
     rejections.push_back(reason + " " + std::to_string(count));

@@ -105,11 +105,12 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   }
 
   device::CommandSnapshot& snapshot = *working_[device_index];
+  const std::uint64_t sequence = ++sequence_[device_index];
   for (std::size_t i = 0; i < validated_.count; ++i) {
     const control::JointTargetUpdate& update = validated_.joints[i];
     device::JointTarget& target = snapshot.joints[update.joint];
     target.generation = session->generation;
-    target.sequence = ++sequence_[device_index];
+    target.sequence = sequence;
     target.received_ns = now_ns;
     target.sent_ns = command.sent_steady_ns;
     target.update = update;

@@ -190,7 +190,10 @@ void ControlLoop::apply_targets() noexcept {
       // tick drained the events); a later tick applies that one once the start has arrived.
       if (target.generation <= newest_started_generation_) {
         owner.applied_sequence = target.sequence;
-        channel_.dropped_stale.fetch_add(1, std::memory_order_relaxed);
+        if (target.sequence != last_dropped_sequence_) {  // count each command once, not each joint
+          last_dropped_sequence_ = target.sequence;
+          channel_.dropped_stale.fetch_add(1, std::memory_order_relaxed);
+        }
       }
       continue;
     }

@@ -104,7 +104,8 @@ class ControlLoop {
   driver::FaultInfo fault_{};
   driver::CommandFrame frame_{};
   const CommandSnapshot* commands_ = nullptr;
-  std::uint32_t newest_started_generation_ = 0;  // highest session generation whose start was drained
+  std::uint32_t newest_started_generation_ = 0;
+  std::uint64_t last_dropped_sequence_ = 0;  // highest session generation whose start was drained
 
   bool have_feedback_ = false;
   std::int64_t last_feedback_ns_ = 0;

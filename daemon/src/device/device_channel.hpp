@@ -26,7 +26,7 @@ using session::kMaxSessionsPerDevice;
 
 struct JointTarget {
   std::uint32_t generation = 0;  // session that wrote it (0 = none yet)
-  std::uint64_t sequence = 0;    // bumps on every write to this joint
+  std::uint64_t sequence = 0;    // the accepted command that wrote it: one number per command, rising
   std::int64_t received_ns = 0;  // CLOCK_MONOTONIC when robotd accepted it
   std::int64_t sent_ns = 0;      // sender's CLOCK_MONOTONIC (0 = unknown)
   control::JointTargetUpdate update;
