@@ -75,11 +75,7 @@ TEST_F(LifecycleTest, InvalidConfigIsRefusedWithKeyPathsAndExitCode2) {
   config["devices"][0]["realtime"] = "sometimes";
   config["daemon"]["colour"] = "blue";
   RobotdProcess robotd(config);
-  std::optional<int> status;
-  for (int i = 0; i < 200 && !status; ++i) {
-    status = robotd.exit_status();
-    std::this_thread::sleep_for(10ms);
-  }
+  const std::optional<int> status = robotd.wait_for_exit();
   ASSERT_TRUE(status.has_value());
   EXPECT_EQ(*status, 2);
   const std::string log = robotd.log();
@@ -92,11 +88,7 @@ TEST_F(LifecycleTest, InvalidDriverParamsNameTheDeviceParamsPath) {
   nlohmann::json config = sim_arm_config(domain_.id());
   config["devices"][0]["params"]["joint_defaults"]["inertia_kg_m2"] = -1;
   RobotdProcess robotd(config);
-  std::optional<int> status;
-  for (int i = 0; i < 300 && !status; ++i) {
-    status = robotd.exit_status();
-    std::this_thread::sleep_for(10ms);
-  }
+  const std::optional<int> status = robotd.wait_for_exit();
   ASSERT_TRUE(status.has_value());
   EXPECT_EQ(*status, 1);
   EXPECT_NE(robotd.log().find("devices[0].params: joint_defaults.inertia_kg_m2"), std::string::npos) << robotd.log();
@@ -106,11 +98,7 @@ TEST_F(LifecycleTest, MissingRequiredPluginStopsRobotdSayingWhereItLooked) {
   nlohmann::json config = sim_arm_config(domain_.id());
   config["devices"][0]["driver"] = "nosuchdriver";
   RobotdProcess robotd(config);
-  std::optional<int> status;
-  for (int i = 0; i < 300 && !status; ++i) {
-    status = robotd.exit_status();
-    std::this_thread::sleep_for(10ms);
-  }
+  const std::optional<int> status = robotd.wait_for_exit();
   ASSERT_TRUE(status.has_value());
   EXPECT_EQ(*status, 1);
   const std::string log = robotd.log();
@@ -164,11 +152,7 @@ TEST_F(LifecycleTest, JointLimitOverridesNarrowTheDriverLimitsButMayNotWidenThem
   widening["devices"][0]["joint_limits"] = {{"joint2", {{"effort_max_nm", 1000}}}};
   robotd_->terminate();
   RobotdProcess refused(widening);
-  std::optional<int> status;
-  for (int i = 0; i < 300 && !status; ++i) {
-    status = refused.exit_status();
-    std::this_thread::sleep_for(10ms);
-  }
+  const std::optional<int> status = refused.wait_for_exit();
   ASSERT_TRUE(status.has_value());
   EXPECT_EQ(*status, 1);
   EXPECT_NE(refused.log().find("devices[0].joint_limits.joint2.effort_max_nm: 1000 is beyond the driver's limit 40"),

@@ -134,13 +134,17 @@ std::optional<int> RobotdProcess::exit_status() {
   return status_;
 }
 
-std::optional<int> RobotdProcess::terminate(std::chrono::milliseconds timeout) {
-  if (!exit_status()) ::kill(pid_, SIGTERM);
+std::optional<int> RobotdProcess::wait_for_exit(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!exit_status() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return exit_status();
+}
+
+std::optional<int> RobotdProcess::terminate(std::chrono::milliseconds timeout) {
+  if (!exit_status()) ::kill(pid_, SIGTERM);
+  return wait_for_exit(timeout);
 }
 
 std::string RobotdProcess::log() const {

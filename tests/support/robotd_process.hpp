@@ -40,6 +40,8 @@ class RobotdProcess {
   std::optional<int> terminate(std::chrono::milliseconds timeout = std::chrono::seconds(10));
   /// Whether the process has exited; if so, its exit status.
   std::optional<int> exit_status();
+  /// Waits for the process to exit on its own; its exit status, or nullopt after `timeout`.
+  std::optional<int> wait_for_exit(std::chrono::milliseconds timeout = std::chrono::seconds(5));
   std::string log() const;
   pid_t pid() const { return pid_; }
 
