@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <string>
 #include <time.h>
 #include <utility>
@@ -136,6 +137,15 @@ IoResult SimDriver::write(const CommandFrame& command, FaultInfo& fault) noexcep
   if (!refresh_link_state(fault)) return IoResult::kDisconnected;
   if (const IoResult status = injected_link_status(fault); status != IoResult::kOk) return status;
   command_ = command;
+  if (command.newest_command_sent_ns != 0) {
+    // How long the newest client command took from its publish to this write().
+    const std::int64_t latency_ns = monotonic_now_ns() - command.newest_command_sent_ns;
+    const std::uint64_t count = latency_count_.load(std::memory_order_relaxed);
+    latency_ns_[count % kLatencySamples].store(
+        static_cast<std::int32_t>(std::clamp<std::int64_t>(latency_ns, 0, std::numeric_limits<std::int32_t>::max())),
+        std::memory_order_relaxed);
+    latency_count_.store(count + 1, std::memory_order_release);
+  }
   return IoResult::kOk;
 }
 

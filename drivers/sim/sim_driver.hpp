@@ -100,6 +100,7 @@ class SimDriver final : public driver::Driver {
   Result<nlohmann::json> raise_fault(const nlohmann::json& args);
   Result<nlohmann::json> set_external_torque(const nlohmann::json& args);
   Result<nlohmann::json> stall(const nlohmann::json& args);
+  Result<nlohmann::json> command_latency(const nlohmann::json& args);
   Result<nlohmann::json> state(const nlohmann::json& args) const;
   std::optional<std::size_t> joint_argument(JsonReader& reader, const nlohmann::json& args) const;
   template <class Change>
@@ -116,6 +117,12 @@ class SimDriver final : public driver::Driver {
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
   std::atomic<std::int64_t> stall_ns_{0};  // the next read() blocks this long (a hung bus)
+  // Client send → write() latency of every frame that carries a new command (see
+  // command_latency): a ring the RT thread fills and call() reads, atomics only.
+  static constexpr std::size_t kLatencySamples = std::size_t{1} << 15U;
+  std::array<std::atomic<std::int32_t>, kLatencySamples> latency_ns_{};
+  std::atomic<std::uint64_t> latency_count_{0};
+  std::atomic<std::uint64_t> latency_reset_at_{0};
   SeqLock<InjectedFaults> injected_faults_;
   std::mutex injected_faults_writer_mutex_;  // serialises non-RT writers; never taken by the RT thread
   SeqLock<SimSnapshot> snapshot_;

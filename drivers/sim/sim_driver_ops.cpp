@@ -1,6 +1,7 @@
 // SimDriver's non-RT side: describe(), diagnostics() and the call() ops.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <exception>
 #include <initializer_list>
 #include <limits>
@@ -21,7 +22,7 @@ struct OpSpec {
   std::string_view help;
 };
 
-constexpr std::array<OpSpec, 6> kOps{{
+constexpr std::array<OpSpec, 7> kOps{{
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
     {"disconnect", R"({}: simulate a lost link; read()/write() report it and the joints damp until recover())"},
     {"raise_fault",
@@ -30,6 +31,9 @@ constexpr std::array<OpSpec, 6> kOps{{
     {"set_external_torque",
      R"({"joint": name or index, "torque_nm": number}: set the constant load on a joint in N·m (e.g. gravity))"},
     {"stall", R"({"ms": 1..10000}: the next read() blocks this long, like a driver hung on its bus (fault injection))"},
+    {"command_latency",
+     R"({"reset": bool, "samples": bool}: time from a client's publish (ControlCommand.sent_steady_ns) to the )"
+     R"(write() that carried it: count and p50/p99/p99.9/max in µs, every sample in ns with samples=true)"},
     {"state", R"({}: per joint position (rad), velocity (rad/s), applied torque (N·m), command kind, applied kp, kd; )"
               R"(e-stop, link, feedback and injected fault)"},
 }};
@@ -134,6 +138,7 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
     if (op == "raise_fault") return raise_fault(arguments);
     if (op == "set_external_torque") return set_external_torque(arguments);
     if (op == "stall") return stall(arguments);
+    if (op == "command_latency") return command_latency(arguments);
     if (op == "state") return state(arguments);
   } catch (const std::exception& e) {
     return make_error(ErrorCode::kInvalidArgument, op + ": " + e.what());
@@ -202,6 +207,36 @@ Result<nlohmann::json> SimDriver::stall(const nlohmann::json& args) {
   if (!errors.empty()) return invalid_arguments("stall", errors);
   stall_ns_.store(*ms * 1'000'000, std::memory_order_release);
   return nlohmann::json{{"stall_ms", *ms}};
+}
+
+Result<nlohmann::json> SimDriver::command_latency(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  const bool reset = reader.boolean_or("reset", false);
+  const bool with_samples = reader.boolean_or("samples", false);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("command_latency", errors);
+
+  const std::uint64_t end = latency_count_.load(std::memory_order_acquire);
+  const std::uint64_t begin = std::max(latency_reset_at_.load(), end > kLatencySamples ? end - kLatencySamples : 0);
+  std::vector<std::int32_t> samples;
+  samples.reserve(static_cast<std::size_t>(end - begin));
+  for (std::uint64_t i = begin; i < end; ++i) samples.push_back(latency_ns_[i % kLatencySamples].load());
+  if (reset) latency_reset_at_.store(end);
+
+  nlohmann::json out{{"count", samples.size()}};
+  if (with_samples) out["samples_ns"] = samples;
+  std::sort(samples.begin(), samples.end());
+  const auto rank_us = [&](double q) {
+    if (samples.empty()) return 0.0;
+    const auto index = static_cast<std::size_t>(std::ceil(q * static_cast<double>(samples.size()))) - 1;
+    return samples[std::min(index, samples.size() - 1)] / 1000.0;
+  };
+  out["p50_us"] = rank_us(0.50);
+  out["p99_us"] = rank_us(0.99);
+  out["p999_us"] = rank_us(0.999);
+  out["max_us"] = samples.empty() ? 0.0 : samples.back() / 1000.0;
+  return out;
 }
 
 std::optional<std::size_t> SimDriver::joint_argument(JsonReader& reader, const nlohmann::json& args) const {

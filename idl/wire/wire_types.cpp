@@ -251,6 +251,7 @@ void Wire<DeviceStatus>::to_c(const DeviceStatus& in, C& out, CArena& arena) {
   out.driver_values._length = out.driver_values._maximum = static_cast<std::uint32_t>(in.driver_values.size());
   out.driver_values._buffer = values;
   out.driver_values._release = false;
+  out.joint_states_published = in.joint_states_published;
 }
 
 DeviceStatus Wire<DeviceStatus>::from_c(const C& in) {
@@ -297,6 +298,7 @@ DeviceStatus Wire<DeviceStatus>::from_c(const C& in) {
     out.driver_values.push_back(
         {copy_string(in.driver_values._buffer[i].key), copy_string(in.driver_values._buffer[i].value)});
   }
+  out.joint_states_published = in.joint_states_published;
   return out;
 }
 

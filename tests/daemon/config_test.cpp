@@ -97,6 +97,16 @@ TEST(Config, ExplicitValuesAreRead) {
   EXPECT_EQ(device.params["joint_count"], 3);
 }
 
+TEST(Config, CpuWakeUpLatencyRequestDefaultsToZeroAndMinusOneTurnsItOff) {
+  EXPECT_EQ(parse(minimal_config()).value().daemon.cpu_dma_latency_us, 0);
+  json document = minimal_config();
+  document["daemon"]["cpu_dma_latency_us"] = -1;
+  EXPECT_EQ(parse(document).value().daemon.cpu_dma_latency_us, -1);
+  document["daemon"]["cpu_dma_latency_us"] = -5;
+  EXPECT_NE(errors_of(document).find("daemon.cpu_dma_latency_us: expected an integer in -1..1000000, got -5"),
+            std::string::npos);
+}
+
 TEST(Config, LineAndBlockCommentsAreAllowed) {
   const std::string text = R"(
     // robotd test config

@@ -160,6 +160,24 @@ TEST_F(LifecycleTest, JointLimitOverridesNarrowTheDriverLimitsButMayNotWidenThem
       << refused.log();
 }
 
+TEST_F(LifecycleTest, LoopTimingReportsTheWindowAndItsSamplesAndResets) {
+  start_robotd();
+  std::this_thread::sleep_for(300ms);
+  auto timing = client().device_call("arm", "loop_timing", R"({"samples": true, "reset": true})");
+  ASSERT_TRUE(timing) << timing.error().message;
+  const auto first = nlohmann::json::parse(timing.value());
+  EXPECT_GT(first["window_ticks"].get<int>(), 200);
+  EXPECT_EQ(first["wake_latency_ns"].size(), first["window_ticks"].get<std::size_t>());
+  EXPECT_GE(first["wake_latency_us"]["p999"].get<double>(), first["wake_latency_us"]["p99"].get<double>());
+  EXPECT_NEAR(first["period_us"]["p50"].get<double>(), 1000.0, 50.0);
+  EXPECT_GT(first["joint_states_published"].get<int>(), 100);
+
+  const auto after_reset = nlohmann::json::parse(client().device_call("arm", "loop_timing").value());
+  EXPECT_LT(after_reset["window_ticks"].get<int>(), first["window_ticks"].get<int>()) << "reset must empty the window";
+  EXPECT_FALSE(after_reset.contains("wake_latency_ns"));
+  EXPECT_FALSE(client().device_call("arm", "loop_timing", R"({"samples": "yes"})"));
+}
+
 // The example program of clients/cpp/examples runs as documented against the default arm.
 TEST_F(LifecycleTest, ExampleProgramMovesTheArmAndReleases) {
   start_robotd();

@@ -58,7 +58,7 @@ inline auto fields(const SessionStatus& m) {
 }
 inline auto fields(const DeviceStatus& m) {
   return std::tie(m.header, m.device, m.driver, m.state, m.state_text, m.fault_code, m.fault_text, m.estop_engaged,
-                  m.loop, m.commands, m.driver_values);
+                  m.loop, m.commands, m.driver_values, m.joint_states_published);
 }
 inline auto fields(const RequestControlRequest& m) {
   return std::tie(m.node_name, m.motor_ids, m.control_mode, m.default_behavior, m.timeout_ms, m.default_kp,
@@ -178,6 +178,7 @@ DeviceStatus sample() {
                           12.f,   30.f, 55.f,      80.f, 150.f, 210.f,  0};
   s.commands = CommandCounters{101, 90, 7, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
   s.driver_values = {{"bus_voltage_v", "24.1"}, {"temperature_c", "41"}};
+  s.joint_states_published = 123456;
   return s;
 }
 template <>

@@ -36,6 +36,16 @@ Result<void> Daemon::start() {
       spdlog::warn("{}", failure);
     }
   }
+  if (config_.daemon.cpu_dma_latency_us >= 0) {
+    auto request = rt::CpuLatencyRequest::hold(config_.daemon.cpu_dma_latency_us);
+    if (request) {
+      cpu_latency_.emplace(std::move(request.value()));
+      spdlog::info("real-time check: holding a {} µs CPU wake-up latency request (/dev/cpu_dma_latency)",
+                   config_.daemon.cpu_dma_latency_us);
+    } else {
+      spdlog::warn("real-time check: {}", request.error().message);
+    }
+  }
   if (auto devices = start_devices(); !devices) return devices;
   return start_dds();
 }
@@ -110,20 +120,21 @@ Result<void> Daemon::start_dds() {
       [this] { session_status_->changed(); });
   intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_);
 
+  const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get()};
+  std::vector<service::DeviceObserver*> observers;
   std::vector<device::BlackBox*> boxes;
-  for (auto& box : black_boxes_) boxes.push_back(box.get());
-  device_services_ = std::make_unique<service::DeviceServices>(
-      device_ptrs_, boxes, *sessions_, [this](std::size_t index) { return publishers_[index]->latest(); });
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    publishers_.push_back(std::make_unique<dds::StatePublisher>(
+        *devices_[i], i, writers, *sessions_, intake_->counters(i), *black_boxes_[i], config_.daemon));
+    observers.push_back(publishers_.back().get());
+    boxes.push_back(black_boxes_[i].get());
+  }
+  device_services_ = std::make_unique<service::DeviceServices>(device_ptrs_, boxes, observers, *sessions_);
   auto services = dds::ServiceHost::create(*participant_, *sessions_, *device_services_);
   if (!services) return services.error();
   services_ = std::move(services.value());
 
-  const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get()};
-  for (std::size_t i = 0; i < devices_.size(); ++i) {
-    publishers_.push_back(std::make_unique<dds::StatePublisher>(
-        *devices_[i], i, writers, *sessions_, intake_->counters(i), *black_boxes_[i], config_.daemon));
-    publishers_.back()->start();
-  }
+  for (auto& publisher : publishers_) publisher->start();
   session_status_->start(*sessions_);
   if (auto started = intake_->start(); !started) return started;
   services_->start();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "dds/state_publisher.hpp"
 #include "device/black_box.hpp"
 #include "device/device.hpp"
+#include "rt/realtime_environment.hpp"
 #include "service/device_services.hpp"
 #include "service/session_service.hpp"
 #include "wire/participant.hpp"
@@ -40,6 +42,7 @@ class Daemon {
   Result<void> start_dds();
 
   config::Config config_;
+  std::optional<rt::CpuLatencyRequest> cpu_latency_;
   std::vector<std::unique_ptr<device::Device>> devices_;
   std::vector<device::Device*> device_ptrs_;
   std::vector<std::unique_ptr<device::BlackBox>> black_boxes_;

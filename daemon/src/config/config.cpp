@@ -35,6 +35,8 @@ void read_daemon(JsonReader& reader, DaemonConfig& daemon) {
       reader.integer_or("max_session_timeout_ms", daemon.max_session_timeout_ms, 10, 86'400'000));
   daemon.stats_window_ticks =
       static_cast<int>(reader.integer_or("stats_window_ticks", daemon.stats_window_ticks, 100, 1'000'000));
+  daemon.cpu_dma_latency_us =
+      static_cast<std::int32_t>(reader.integer_or("cpu_dma_latency_us", daemon.cpu_dma_latency_us, -1, 1'000'000));
   if (daemon.min_session_timeout_ms > daemon.max_session_timeout_ms) {
     reader.error("min_session_timeout_ms", "must not exceed max_session_timeout_ms");
   }

@@ -58,6 +58,7 @@ struct DaemonConfig {
   std::int32_t min_session_timeout_ms = 10;
   std::int32_t max_session_timeout_ms = 600'000;
   int stats_window_ticks = 5000;
+  std::int32_t cpu_dma_latency_us = 0;  // PM QoS request held while robotd runs; -1 = none
 };
 
 struct Config {

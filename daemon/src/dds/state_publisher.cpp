@@ -1,5 +1,7 @@
 #include "dds/state_publisher.hpp"
 
+#include <cmath>
+
 #include <spdlog/spdlog.h>
 
 #include "rt/monotonic_clock.hpp"
@@ -88,7 +90,10 @@ void StatePublisher::finish() {
 
 void StatePublisher::drain_loop(bool publish_state) {
   device::DeviceChannel& channel = device_.channel();
-  while (auto timing = channel.timings.pop()) window_.add(*timing);
+  {
+    const std::lock_guard lock(window_mutex_);
+    while (auto timing = channel.timings.pop()) window_.add(*timing);
+  }
   while (auto event = channel.loop_events.pop()) handle(*event);
   if (const device::LoopState* state = channel.state.take()) {
     {
@@ -147,7 +152,7 @@ void StatePublisher::publish_joint_state(const device::LoopState& state) {
     joint_state_.velocity[j] = state.feedback.joints[j].velocity_rad_s;
     joint_state_.effort[j] = state.feedback.joints[j].effort_nm;
   }
-  (void)writers_.joint_states->write(joint_state_);
+  if (writers_.joint_states->write(joint_state_)) joint_states_published_.fetch_add(1, std::memory_order_relaxed);
   if (device_.model().has_imu && state.feedback.has_imu && writers_.imu != nullptr) {
     const driver::ImuSample& sample = state.feedback.imu;
     Imu imu;
@@ -175,13 +180,17 @@ DeviceStatus StatePublisher::device_status() const {
   status.fault_code = state.state == DeviceState::kFault ? state.fault.code : 0;
   status.fault_text = state.state == DeviceState::kFault ? state.fault.text.data() : "";
   status.estop_engaged = state.estop;
-  status.loop = window_.summarize();
+  {
+    const std::lock_guard lock(window_mutex_);
+    status.loop = window_.summarize();
+  }
   status.loop.rate_hz = device_.model().rate_hz;
   status.loop.realtime = device_.thread_start().realtime;
   status.loop.ticks = state.tick;
   status.loop.overruns = state.overruns;
   status.loop.rt_heap_allocations = state.rt_allocations;
   status.commands = counters_.snapshot(device_.channel().dropped_stale.load(std::memory_order_relaxed));
+  status.joint_states_published = joint_states_published_.load(std::memory_order_relaxed);
   for (auto& [key, value] : device_.driver().diagnostics()) status.driver_values.push_back({key, value});
   const std::uint64_t lost = device_.channel().lost_events.load(std::memory_order_relaxed);
   if (lost > 0) status.driver_values.push_back({"robotd.lost_loop_events", std::to_string(lost)});
@@ -193,6 +202,43 @@ void StatePublisher::publish_device_status() { (void)writers_.device_status->wri
 device::LoopState StatePublisher::latest() const {
   const std::lock_guard lock(latest_mutex_);
   return latest_;
+}
+
+nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
+  std::vector<device::TickTiming> window;
+  {
+    const std::lock_guard lock(window_mutex_);
+    window = window_.samples();
+    if (reset) window_.clear();
+  }
+  std::vector<std::int32_t> wake;
+  std::vector<std::int32_t> execution;
+  std::vector<std::int32_t> period;
+  for (const auto& timing : window) {
+    wake.push_back(timing.wake_latency_ns);
+    execution.push_back(timing.execution_ns);
+    period.push_back(timing.period_ns);
+  }
+  const device::LoopState state = latest();
+  nlohmann::json out = {{"device", device_.model().name},
+                        {"window_ticks", window.size()},
+                        {"ticks", state.tick},
+                        {"overruns", state.overruns},
+                        {"joint_states_published", joint_states_published_.load(std::memory_order_relaxed)},
+                        {"realtime_ns", rt::realtime_now_ns()}};
+  if (samples) {  // before percentiles() reorders them
+    out["wake_latency_ns"] = wake;
+    out["execution_ns"] = execution;
+  }
+  const auto summary = [](std::vector<std::int32_t>& values) {
+    const device::Percentiles p = device::percentiles(values);
+    const auto us = [](float value) { return std::round(static_cast<double>(value) * 1000.0) / 1000.0; };
+    return nlohmann::json{{"p50", us(p.p50)}, {"p99", us(p.p99)}, {"p999", us(p.p999)}, {"max", us(p.max)}};
+  };
+  out["wake_latency_us"] = summary(wake);
+  out["execution_us"] = summary(execution);
+  out["period_us"] = summary(period);
+  return out;
 }
 
 }  // namespace robotd::dds

@@ -14,6 +14,7 @@
 #include "device/device.hpp"
 #include "device/loop_statistics.hpp"
 #include "service/command_counters.hpp"
+#include "service/device_observer.hpp"
 #include "service/session_service.hpp"
 #include "wire/topic_io.hpp"
 
@@ -25,22 +26,22 @@ struct StateWriters {
   const wire::TopicWriter<DeviceStatus>* device_status = nullptr;
 };
 
-class StatePublisher {
+class StatePublisher final : public service::DeviceObserver {
  public:
   StatePublisher(device::Device& device, std::size_t device_index, StateWriters writers,
                  service::SessionService& sessions, const service::CommandCounterSet& counters,
                  device::BlackBox& black_box, const config::DaemonConfig& daemon);
   StatePublisher(const StatePublisher&) = delete;
   StatePublisher& operator=(const StatePublisher&) = delete;
-  ~StatePublisher();
+  ~StatePublisher() override;
 
   void start();
   /// After the device has stopped: handles what the loop said last and publishes the final
   /// (STOPPED) status, then ends the thread.
   void finish();
 
-  /// The latest state the loop published (tick 0 = none yet).
-  device::LoopState latest() const;
+  device::LoopState latest() const override;
+  nlohmann::json loop_timing(bool samples, bool reset) override;
 
  private:
   DeviceStatus device_status() const;
@@ -58,7 +59,9 @@ class StatePublisher {
   device::BlackBox& black_box_;
   const config::DaemonConfig& daemon_;
 
+  mutable std::mutex window_mutex_;  // the window is fed here and read by loop_timing() on a service thread
   device::LoopStatisticsWindow window_;
+  std::atomic<std::uint64_t> joint_states_published_{0};
   JointState joint_state_;
   mutable std::mutex latest_mutex_;
   device::LoopState latest_{};

@@ -79,10 +79,13 @@ void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   handle_maintenance(now_ns);
   if (!in_maintenance_) {
     read_feedback(now_ns);
-    take_commands();
-    expire_sessions(now_ns);
     update_estop(now_ns);
     update_shutdown(now_ns);
+    // The mailbox is sampled as late as it can be: a command that arrives while the tick
+    // reads the driver still makes this tick. Session expiry needs the newest keepalives, so
+    // it follows.
+    take_commands();
+    expire_sessions(now_ns);
     if (!safe_state_ && !shutting_down_) apply_targets();
     write_command(deadline_ns, now_ns);
   }

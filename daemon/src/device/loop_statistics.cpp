@@ -13,6 +13,19 @@ void LoopStatisticsWindow::add(const TickTiming& timing) {
   count_ = std::min(count_ + 1, samples_.size());
 }
 
+void LoopStatisticsWindow::clear() {
+  next_ = 0;
+  count_ = 0;
+}
+
+std::vector<TickTiming> LoopStatisticsWindow::samples() const {
+  std::vector<TickTiming> ordered;
+  ordered.reserve(count_);
+  const std::size_t oldest = (next_ + samples_.size() - count_) % samples_.size();
+  for (std::size_t i = 0; i < count_; ++i) ordered.push_back(samples_[(oldest + i) % samples_.size()]);
+  return ordered;
+}
+
 Percentiles percentiles(std::vector<std::int32_t>& values) {
   if (values.empty()) return {};
   const auto rank = [&](double q) {
@@ -24,6 +37,7 @@ Percentiles percentiles(std::vector<std::int32_t>& values) {
   Percentiles out;
   out.p50 = rank(0.50);
   out.p99 = rank(0.99);
+  out.p999 = rank(0.999);
   out.max = static_cast<float>(*std::max_element(values.begin(), values.end())) / 1000.0F;
   return out;
 }

@@ -15,7 +15,10 @@ class LoopStatisticsWindow {
   explicit LoopStatisticsWindow(std::size_t capacity);
 
   void add(const TickTiming& timing);
+  void clear();
   std::size_t size() const { return count_; }
+  /// The samples in the window, oldest first.
+  std::vector<TickTiming> samples() const;
   /// p50 / p99 / max of period, wake latency and execution time over the window, in µs.
   LoopStatistics summarize() const;
 
@@ -28,6 +31,7 @@ class LoopStatisticsWindow {
 struct Percentiles {
   float p50 = 0;
   float p99 = 0;
+  float p999 = 0;
   float max = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "rt/realtime_environment.hpp"
 
 #include <cerrno>
+#include <fcntl.h>
 #include <fstream>
 #include <sstream>
 #include <sys/mman.h>
@@ -8,6 +9,7 @@
 #include <sys/utsname.h>
 #include <system_error>
 #include <unistd.h>
+#include <utility>
 
 namespace robotd::rt {
 namespace {
@@ -75,6 +77,37 @@ std::string lock_memory() {
   return std::string("mlockall failed (") + std::generic_category().message(errno) +
          "): pages may be swapped out under memory pressure; raise RLIMIT_MEMLOCK (LimitMEMLOCK=infinity) "
          "or grant CAP_IPC_LOCK";
+}
+
+Result<CpuLatencyRequest> CpuLatencyRequest::hold(std::int32_t latency_us) {
+  const int fd = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+  if (fd < 0) {
+    return make_error(ErrorCode::kRefused,
+                      "cannot open /dev/cpu_dma_latency (" + std::generic_category().message(errno) +
+                          "): CPUs may enter deep idle states, which adds tens of µs to loop wake-ups; give robotd "
+                          "write access (systemd/90-robotd-cpu-dma-latency.rules) or set daemon.cpu_dma_latency_us "
+                          "to -1 to stop asking");
+  }
+  if (write(fd, &latency_us, sizeof(latency_us)) != static_cast<ssize_t>(sizeof(latency_us))) {
+    const std::string reason = std::generic_category().message(errno);
+    close(fd);
+    return make_error(ErrorCode::kRefused, "writing /dev/cpu_dma_latency failed (" + reason + ")");
+  }
+  return CpuLatencyRequest(fd);
+}
+
+CpuLatencyRequest::CpuLatencyRequest(CpuLatencyRequest&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+
+CpuLatencyRequest& CpuLatencyRequest::operator=(CpuLatencyRequest&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) close(fd_);
+    fd_ = std::exchange(other.fd_, -1);
+  }
+  return *this;
+}
+
+CpuLatencyRequest::~CpuLatencyRequest() {
+  if (fd_ >= 0) close(fd_);  // closing the file withdraws the request
 }
 
 }  // namespace robotd::rt

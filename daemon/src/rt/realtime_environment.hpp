@@ -2,8 +2,11 @@
 // timing problem is traced to its cause (kernel, limits, governor) instead of guessed at.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include "robotd/result.hpp"
 
 namespace robotd::rt {
 
@@ -23,5 +26,23 @@ std::string describe(const EnvironmentReport& report);
 
 /// mlockall(MCL_CURRENT | MCL_FUTURE). Returns "" on success, else why it failed.
 std::string lock_memory();
+
+/// A PM QoS request on /dev/cpu_dma_latency, held while this object lives: CPUs stay out of
+/// idle states whose exit takes longer than the requested time, so a loop's timer wake-up is
+/// not delayed by waking the CPU. (cyclictest holds the same request while it measures.)
+class CpuLatencyRequest {
+ public:
+  /// Requests `latency_us` (0 = stay in the shallowest idle state).
+  static Result<CpuLatencyRequest> hold(std::int32_t latency_us);
+  CpuLatencyRequest(CpuLatencyRequest&& other) noexcept;
+  CpuLatencyRequest& operator=(CpuLatencyRequest&& other) noexcept;
+  CpuLatencyRequest(const CpuLatencyRequest&) = delete;
+  CpuLatencyRequest& operator=(const CpuLatencyRequest&) = delete;
+  ~CpuLatencyRequest();
+
+ private:
+  explicit CpuLatencyRequest(int fd) : fd_(fd) {}
+  int fd_ = -1;
+};
 
 }  // namespace robotd::rt

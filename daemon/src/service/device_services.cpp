@@ -18,18 +18,21 @@ DeviceCallResponse call_failed(std::string message) { return DeviceCallResponse{
 }  // namespace
 
 DeviceServices::DeviceServices(std::vector<device::Device*> devices, std::vector<device::BlackBox*> black_boxes,
-                               SessionService& sessions, std::function<device::LoopState(std::size_t)> latest_state)
+                               std::vector<DeviceObserver*> observers, SessionService& sessions)
     : devices_(std::move(devices)),
       black_boxes_(std::move(black_boxes)),
       sessions_(sessions),
-      latest_state_(std::move(latest_state)) {
+      observers_(std::move(observers)) {
   for (std::size_t i = 0; i < devices_.size(); ++i) call_mutexes_.push_back(std::make_unique<std::mutex>());
 }
 
 std::vector<std::string> DeviceServices::daemon_ops() {
   return {"recover: clear a latched fault (calls the driver's recover); joints then hold where they are. Args: {}",
           "blackbox: the recent ticks (state, command, timing) kept by the loop. Args: {\"fresh\": bool} — "
-          "false (default) returns the capture made at the last fault, true captures now"};
+          "false (default) returns the capture made at the last fault, true captures now",
+          "loop_timing: wake latency, execution time and period over the statistics window (p50, p99, p99.9, max "
+          "in µs), ticks, overruns, /joint_states published. Args: {\"samples\": bool (every sample in ns), "
+          "\"reset\": bool (empty the window after reading)}"};
 }
 
 ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*request*/) const {
@@ -98,7 +101,7 @@ bool DeviceServices::wait_for_state(std::size_t device, std::uint64_t after_tick
                                     device::LoopState& out) const {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
-    out = latest_state_(device);
+    out = observers_[device]->latest();
     if (out.tick > after_tick && out.state == DeviceState::kRunning) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -148,7 +151,7 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   if (!zeroed) return ResetZeroResponse{false, "reset_zero on '" + model.name + "' failed: " + zeroed.error().message};
 
   device::LoopState after;
-  if (!wait_for_state(index.value(), latest_state_(index.value()).tick, timeout, after)) {
+  if (!wait_for_state(index.value(), observers_[index.value()]->latest().tick, timeout, after)) {
     return ResetZeroResponse{false, "device '" + model.name + "' gave no feedback within " +
                                         std::to_string(timeout_ms) + " ms after zeroing"};
   }
@@ -198,12 +201,22 @@ DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::strin
         device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true, std::chrono::seconds(10));
     if (!recovered) return call_failed("recover of '" + name + "' failed: " + recovered.error().message);
     device::LoopState state;
-    if (!wait_for_state(index, latest_state_(index).tick, std::chrono::seconds(2), state)) {
+    if (!wait_for_state(index, observers_[index]->latest().tick, std::chrono::seconds(2), state)) {
       return call_failed("'" + name + "' recovered but is not RUNNING: " + std::string(to_string(state.state)) + " " +
                          state.fault.text.data());
     }
     spdlog::info("device '{}': recovered; joints hold where they are", name);
     return DeviceCallResponse{true, "recovered; joints hold where they are", R"({"state":"RUNNING"})"};
+  }
+  if (op == "loop_timing") {
+    for (const auto& [key, value] : args.items()) {
+      if ((key != "samples" && key != "reset") || !value.is_boolean()) {
+        return call_failed("loop_timing takes {\"samples\": true|false, \"reset\": true|false}, got " + args.dump());
+      }
+    }
+    const nlohmann::json timing =
+        observers_[index]->loop_timing(args.value("samples", false), args.value("reset", false));
+    return DeviceCallResponse{true, "ok", timing.dump()};
   }
   // blackbox
   for (const auto& [key, value] : args.items()) {

@@ -2,6 +2,9 @@
 // device_call. device_call reaches the driver's vendor ops plus robotd's own per-device ops:
 //   recover   {}                 clear a latched fault (driver.recover), joints then hold
 //   blackbox  {"fresh": false}   the last black-box capture, or a new one with fresh=true
+//   loop_timing {"samples": false, "reset": false}
+//                                wake latency / execution / period percentiles over the
+//                                statistics window (and every sample), for benchmarks
 #pragma once
 
 #include <functional>
@@ -12,15 +15,16 @@
 #include "device/black_box.hpp"
 #include "device/device.hpp"
 #include "robotd/messages.hpp"
+#include "service/device_observer.hpp"
 #include "service/session_service.hpp"
 
 namespace robotd::service {
 
 class DeviceServices {
  public:
-  /// `latest_state(i)` returns device i's newest loop state (from its publisher).
+  /// `observers[i]` tells device i's loop state and timing (its state publisher).
   DeviceServices(std::vector<device::Device*> devices, std::vector<device::BlackBox*> black_boxes,
-                 SessionService& sessions, std::function<device::LoopState(std::size_t)> latest_state);
+                 std::vector<DeviceObserver*> observers, SessionService& sessions);
 
   ListDevicesResponse list_devices(const ListDevicesRequest& request) const;
   EstopResponse estop(const EstopRequest& request);
@@ -38,7 +42,7 @@ class DeviceServices {
   std::vector<device::Device*> devices_;
   std::vector<device::BlackBox*> black_boxes_;
   SessionService& sessions_;
-  std::function<device::LoopState(std::size_t)> latest_state_;
+  std::vector<DeviceObserver*> observers_;
   std::vector<std::unique_ptr<std::mutex>> call_mutexes_;  // one vendor op at a time per driver
 };
 

@@ -152,6 +152,7 @@ struct DeviceStatus {
   LoopStatistics loop;
   CommandCounters commands;
   std::vector<KeyValue> driver_values;
+  std::uint64_t joint_states_published = 0;  // /joint_states samples of this device written so far
 };
 
 struct DeviceInfo {

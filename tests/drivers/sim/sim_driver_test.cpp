@@ -104,7 +104,7 @@ TEST_F(SimDriverTest, DescribeReportsJointsLimitsCapabilitiesAndOps) {
     op_names += op.name + " ";
     EXPECT_FALSE(op.help.empty()) << op.name;
   }
-  EXPECT_EQ(op_names, "stop_feedback disconnect raise_fault set_external_torque stall state ");
+  EXPECT_EQ(op_names, "stop_feedback disconnect raise_fault set_external_torque stall command_latency state ");
 }
 
 TEST_F(SimDriverTest, ConfigureRejectsInvalidParamsNamingTheKey) {
@@ -388,6 +388,28 @@ TEST_F(SimDriverTest, WithoutImuFeedbackHasNone) {
   EXPECT_EQ(feedback_.imu.linear_acceleration_m_s2, (std::array<double, 3>{0, 0, 0}));
 }
 
+TEST_F(SimDriverTest, CommandLatencyIsWriteTimeMinusTheClientsSendTime) {
+  start();
+  CommandFrame frame;
+  frame.joint_count = 6;
+  for (int i = 0; i < 10; ++i) {
+    // write() stamps with the real CLOCK_MONOTONIC: a command "sent" 2 ms ago arrives ≥ 2 ms late.
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    frame.newest_command_sent_ns = static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec - 2'000'000;
+    ASSERT_EQ(driver_.write(frame, fault_), IoResult::kOk);
+  }
+  frame.newest_command_sent_ns = 0;  // ticks without a new command are not samples
+  ASSERT_EQ(driver_.write(frame, fault_), IoResult::kOk);
+
+  const json latency = call("command_latency", {{"samples", true}, {"reset", true}});
+  EXPECT_EQ(latency["count"], 10);
+  EXPECT_EQ(latency["samples_ns"].size(), 10U);
+  EXPECT_GE(latency["p50_us"].get<double>(), 2000.0);
+  EXPECT_LT(latency["max_us"].get<double>(), 100'000.0);
+  EXPECT_EQ(call("command_latency")["count"], 0) << "reset must start a new measurement";
+}
+
 TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   start();
   const Result<json> result = driver_.call("levitate", json::object());
@@ -395,7 +417,7 @@ TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   EXPECT_EQ(result.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(result.error().message,
             R"(unknown op "levitate" (the sim driver has: stop_feedback, disconnect, raise_fault, )"
-            R"(set_external_torque, stall, state))");
+            R"(set_external_torque, stall, command_latency, state))");
 }
 
 TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {

@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""CI's check of the benches: bench/run --quick must run every bench and write every figure.
+It checks that the figures exist and are numbers, not that this machine was fast."""
+import json
+import numbers
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+REQUIRED = [
+    "loop_wake_p50_us", "loop_wake_p99_us", "loop_wake_p999_us", "loop_wake_max_us", "loop_exec_p99_us",
+    "baseline_wake_p50_us", "baseline_wake_p99_us", "baseline_wake_p999_us", "baseline_wake_max_us",
+    "wake_p99_ratio", "wake_p99_ratio_median_of_blocks",
+    "cmd_latency_p50_us", "cmd_latency_p99_us", "cmd_latency_p999_us", "cmd_latency_max_us",
+    "dds_oneway_p50_us", "dds_oneway_p99_us", "dds_oneway_p999_us", "dds_oneway_max_us",
+    "fanout1_min_fraction", "fanout4_min_fraction", "fanout16_min_fraction", "fanout16_overruns",
+    "fanout16_robotd_cpu_cores",
+    "scale1_worst_wake_p99_us", "scale4_worst_wake_p99_us", "scale8_worst_wake_p99_us", "humanoid_worst_wake_p99_us",
+    "scale8_overruns_per_min", "scale8_baseline_late_per_min", "scale8_robotd_cpu_cores",
+    "tick_ns_6", "tick_ns_23", "tick_instructions_6", "tick_instructions_23",
+]
+
+
+def main():
+    repo, build_dir = Path(sys.argv[1]), sys.argv[2]
+    with tempfile.TemporaryDirectory(prefix="robotd-bench-") as scratch:
+        output = Path(scratch) / "results.json"
+        run = subprocess.run([sys.executable, str(repo / "bench" / "run"), "--quick", "--build-dir", build_dir,
+                              "--output", str(output)], capture_output=True, text=True)
+        print(run.stdout[-3000:])
+        if run.returncode != 0:
+            print(run.stderr[-3000:])
+            sys.exit(f"bench/run --quick failed with exit code {run.returncode}")
+        figures = json.loads(output.read_text())["figures"]
+    missing = [key for key in REQUIRED if key not in figures]
+    not_numbers = [key for key in REQUIRED if key in figures and not isinstance(figures[key], numbers.Number)]
+    if missing or not_numbers:
+        sys.exit(f"missing figures: {missing}; not numbers: {not_numbers}")
+    print(f"all {len(REQUIRED)} required figures present")
+
+
+if __name__ == "__main__":
+    main()
