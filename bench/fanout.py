@@ -4,9 +4,9 @@ simulated arm's state at 1 kHz. For each subscriber, the fraction of the samples
 published in the measured window that it received; the loop's overruns and robotd's CPU use
 over the same window.
 
-robotd reports its /joint_states publish count and its CLOCK_REALTIME at the start and end of
-the window (device_call loop_timing); every sample's header stamp is robotd's CLOCK_REALTIME at
-publication, so each subscriber's count is taken over exactly the published samples."""
+robotd reports its /joint_states publish count together with the header stamp of the last
+sample that count covers (device_call loop_timing) at the start and end of the window; stamps
+are unique, so each subscriber counts exactly the samples published in the window."""
 import tempfile
 import time
 from pathlib import Path
@@ -32,7 +32,8 @@ def run(programs, subscribers, seconds):
         fractions = []
         for output in outputs:
             stamps = [int(line) for line in output.read_text().split()]
-            received = sum(1 for stamp in stamps if start["realtime_ns"] <= stamp < end["realtime_ns"])
+            first, last = start["last_published_stamp_ns"], end["last_published_stamp_ns"]
+            received = sum(1 for stamp in stamps if first < stamp <= last)
             fractions.append(received / published if published else 0.0)
         return {"published": published, "fractions": fractions, "overruns": end["overruns"] - start["overruns"],
                 "cpu_cores": (cpu_end - cpu_start) / (wall_end - wall_start)}

@@ -152,7 +152,11 @@ void StatePublisher::publish_joint_state(const device::LoopState& state) {
     joint_state_.velocity[j] = state.feedback.joints[j].velocity_rad_s;
     joint_state_.effort[j] = state.feedback.joints[j].effort_nm;
   }
-  if (writers_.joint_states->write(joint_state_)) joint_states_published_.fetch_add(1, std::memory_order_relaxed);
+  if (writers_.joint_states->write(joint_state_)) {
+    const std::lock_guard lock(published_mutex_);
+    ++joint_states_published_;
+    last_published_stamp_ns_ = joint_state_.header.stamp.to_ns();
+  }
   if (device_.model().has_imu && state.feedback.has_imu && writers_.imu != nullptr) {
     const driver::ImuSample& sample = state.feedback.imu;
     Imu imu;
@@ -190,7 +194,10 @@ DeviceStatus StatePublisher::device_status() const {
   status.loop.overruns = state.overruns;
   status.loop.rt_heap_allocations = state.rt_allocations;
   status.commands = counters_.snapshot(device_.channel().dropped_stale.load(std::memory_order_relaxed));
-  status.joint_states_published = joint_states_published_.load(std::memory_order_relaxed);
+  {
+    const std::lock_guard lock(published_mutex_);
+    status.joint_states_published = joint_states_published_;
+  }
   for (auto& [key, value] : device_.driver().diagnostics()) status.driver_values.push_back({key, value});
   const std::uint64_t lost = device_.channel().lost_events.load(std::memory_order_relaxed);
   if (lost > 0) status.driver_values.push_back({"robotd.lost_loop_events", std::to_string(lost)});
@@ -223,9 +230,12 @@ nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
   nlohmann::json out = {{"device", device_.model().name},
                         {"window_ticks", window.size()},
                         {"ticks", state.tick},
-                        {"overruns", state.overruns},
-                        {"joint_states_published", joint_states_published_.load(std::memory_order_relaxed)},
-                        {"realtime_ns", rt::realtime_now_ns()}};
+                        {"overruns", state.overruns}};
+  {
+    const std::lock_guard lock(published_mutex_);
+    out["joint_states_published"] = joint_states_published_;
+    out["last_published_stamp_ns"] = last_published_stamp_ns_;  // header.stamp of the last one counted
+  }
   if (samples) {  // before percentiles() reorders them
     out["wake_latency_ns"] = wake;
     out["execution_ns"] = execution;

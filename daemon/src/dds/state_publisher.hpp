@@ -61,7 +61,11 @@ class StatePublisher final : public service::DeviceObserver {
 
   mutable std::mutex window_mutex_;  // the window is fed here and read by loop_timing() on a service thread
   device::LoopStatisticsWindow window_;
-  std::atomic<std::uint64_t> joint_states_published_{0};
+  // How many /joint_states samples went out, and the stamp of the last one, updated together so
+  // a reader can tell exactly which samples the count covers.
+  mutable std::mutex published_mutex_;
+  std::uint64_t joint_states_published_ = 0;
+  std::int64_t last_published_stamp_ns_ = 0;
   JointState joint_state_;
   mutable std::mutex latest_mutex_;
   device::LoopState latest_{};

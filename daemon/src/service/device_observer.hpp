@@ -15,7 +15,8 @@ class DeviceObserver {
   /// The newest state the loop published (tick 0 = none yet).
   virtual device::LoopState latest() const = 0;
   /// Loop timing over the statistics window: percentiles of wake latency, execution time and
-  /// period, ticks, overruns, /joint_states published; with `samples`, every sample (ns).
+  /// period, ticks, overruns, /joint_states published (with the stamp of the last one counted);
+  /// with `samples`, every sample (ns).
   /// `reset` empties the window afterwards, so the next call covers only what follows.
   virtual nlohmann::json loop_timing(bool samples, bool reset) = 0;
 };
