@@ -17,7 +17,7 @@ REQUIRED = [
     "fanout1_min_fraction", "fanout4_min_fraction", "fanout16_min_fraction", "fanout16_overruns",
     "fanout16_robotd_cpu_cores",
     "scale1_worst_wake_p99_us", "scale4_worst_wake_p99_us", "scale8_worst_wake_p99_us", "humanoid_worst_wake_p99_us",
-    "scale8_overruns_per_min", "scale8_baseline_late_per_min", "scale8_robotd_cpu_cores",
+    "scale8_overruns_per_min", "scale8_late_per_min", "scale8_baseline_late_per_min", "scale8_robotd_cpu_cores",
     "tick_ns_6", "tick_ns_23", "tick_instructions_6", "tick_instructions_23",
 ]
 
