@@ -78,7 +78,7 @@ def main():
           f"{INTERVAL_US} µs) alternating")
     print(b.table(["case", "devices", "worst wake p99 µs", "cyclictest p99 µs", "overruns/min", "late/min",
                    "cyclictest late/min", "robotd CPU cores"], rows))
-    print("target: 8 devices with no more overruns than cyclictest's late wake-ups, robotd under 0.5 core")
+    print("target: 8 devices with no more late wake-ups than cyclictest, robotd under 0.5 core")
     b.emit(figures)
 
 
