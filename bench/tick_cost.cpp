@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <valgrind/callgrind.h>
 
@@ -91,10 +92,7 @@ class TickBench {
     (void)channel.state.take();
   }
 
-  [[noreturn]] static void fail(const std::string& message) {
-    std::fprintf(stderr, "robotd_bench_tick: %s\n", message.c_str());
-    std::exit(1);
-  }
+  [[noreturn]] static void fail(const std::string& message) { throw std::runtime_error(message); }
 
   std::unique_ptr<robotd::device::Device> device_;
   std::unique_ptr<robotd::device::ControlLoop> loop_;
@@ -103,7 +101,7 @@ class TickBench {
 
 void tick_with_new_command(benchmark::State& state) {
   TickBench bench(static_cast<int>(state.range(0)));
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop idiom
     state.PauseTiming();
     bench.new_command();
     state.ResumeTiming();
@@ -127,13 +125,18 @@ int callgrind_ticks(int ticks, int joints) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i + 3 < argc + 1; ++i) {
-    if (std::strcmp(argv[i], "--callgrind-ticks") == 0 && i + 3 < argc && std::strcmp(argv[i + 2], "--joints") == 0) {
-      return callgrind_ticks(std::atoi(argv[i + 1]), std::atoi(argv[i + 3]));
+  try {
+    for (int i = 1; i + 3 < argc; ++i) {
+      if (std::strcmp(argv[i], "--callgrind-ticks") == 0 && std::strcmp(argv[i + 2], "--joints") == 0) {
+        return callgrind_ticks(std::atoi(argv[i + 1]), std::atoi(argv[i + 3]));
+      }
     }
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "robotd_bench_tick: %s\n", e.what());
+    return 1;
   }
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
 }

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ctime>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -40,16 +41,11 @@ robotd::ControlCommand command_like_a_client() {
 
 template <class T>
 T must(robotd::Result<T> result) {
-  if (!result) {
-    std::fprintf(stderr, "%s\n", result.error().message.c_str());
-    std::exit(1);
-  }
+  if (!result) throw std::runtime_error(result.error().message);
   return std::move(result.value());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"DDS ping-pong with robotd's command type and QoS (bench tool)"};
   int domain = 0;
   std::string role;
@@ -123,4 +119,14 @@ int main(int argc, char** argv) {
   std::printf("{\"sent\": %ld, \"lost\": %ld, \"oneway_ns\": [%s]}\n", sent, sent - static_cast<long>(oneway_ns.size()),
               samples.c_str());
   return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "robotd_bench_pingpong: %s\n", e.what());
+    return 1;
+  }
 }
