@@ -132,6 +132,13 @@ Json to_json(const robotd::Imu& imu) {
               {"linear_acceleration", to_json(imu.linear_acceleration)}};
 }
 
+Json to_json(const robotd::PoseStamped& pose) {
+  const robotd::Quaternion& q = pose.orientation;
+  return Json{{"header", to_json(pose.header)},
+              {"position", to_json(pose.position)},
+              {"orientation", Json{{"x", q.x}, {"y", q.y}, {"z", q.z}, {"w", q.w}}}};
+}
+
 std::string compact_text(const Json& json) { return json.dump(-1, ' ', false, Json::error_handler_t::replace); }
 
 std::string pretty_text(const Json& json) { return json.dump(2, ' ', false, Json::error_handler_t::replace); }

@@ -17,6 +17,7 @@ Json to_json(const robotd::DeviceStatus& status);
 Json to_json(const robotd::SessionStatus& status);
 Json to_json(const robotd::JointState& state);
 Json to_json(const robotd::Imu& imu);
+Json to_json(const robotd::PoseStamped& pose);
 
 /// One line; invalid UTF-8 from a device is replaced rather than failing the output.
 std::string compact_text(const Json& json);

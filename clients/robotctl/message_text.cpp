@@ -134,6 +134,14 @@ std::string joint_state_text(const robotd::JointState& state) {
   return state.header.frame_id + "  stamp " + stamp_text(state.header.stamp) + "\n" + table.render();
 }
 
+std::string end_pose_text(const robotd::PoseStamped& pose) {
+  const robotd::Quaternion& q = pose.orientation;
+  return pose.header.frame_id + "  stamp " + stamp_text(pose.header.stamp) + "\n" +
+         labelled("position", vector_text(pose.position) + " m") +
+         labelled("orientation", "x " + signed_fixed(q.x, 4) + "  y " + signed_fixed(q.y, 4) + "  z " +
+                                     signed_fixed(q.z, 4) + "  w " + signed_fixed(q.w, 4));
+}
+
 std::string imu_text(const robotd::Imu& imu) {
   const robotd::Quaternion& q = imu.orientation;
   return imu.header.frame_id + "  stamp " + stamp_text(imu.header.stamp) + "\n" +

@@ -17,6 +17,7 @@ std::string device_status_text(const robotd::DeviceStatus& status);
 std::string session_table(const robotd::SessionStatus& status);
 std::string joint_state_text(const robotd::JointState& state);
 std::string imu_text(const robotd::Imu& imu);
+std::string end_pose_text(const robotd::PoseStamped& pose);
 
 /// The state name, followed by robotd's explanation when it says more ("ESTOP (e-stop engaged by ...)").
 std::string state_text(const robotd::DeviceStatus& status);

@@ -117,6 +117,8 @@ class SimDriver final : public driver::Driver {
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
   std::atomic<std::int64_t> stall_ns_{0};  // the next read() blocks this long (a hung bus)
+  // An injected disconnect lasts until this CLOCK_MONOTONIC time: recover() fails before it.
+  std::atomic<std::int64_t> link_down_until_ns_{0};
   // Client send → write() latency of every frame that carries a new command (see
   // command_latency): a ring the RT thread fills and call() reads, atomics only.
   static constexpr std::size_t kLatencySamples = std::size_t{1} << 15U;

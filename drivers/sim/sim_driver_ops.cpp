@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <ctime>
 #include <exception>
 #include <initializer_list>
 #include <limits>
@@ -24,7 +25,9 @@ struct OpSpec {
 
 constexpr std::array<OpSpec, 7> kOps{{
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
-    {"disconnect", R"({}: simulate a lost link; read()/write() report it and the joints damp until recover())"},
+    {"disconnect",
+     R"({"for_ms": int >= 0}: simulate a lost link; read()/write() report it and the joints damp; recover() )"
+     R"(fails until for_ms has passed (0: the link is back as soon as it is recovered))"},
     {"raise_fault",
      R"({"code": int != 0, "text": string}: simulate a controller fault; read()/write() report it and the joints )"
      R"(damp until recover())"},
@@ -160,9 +163,16 @@ Result<nlohmann::json> SimDriver::stop_feedback(const nlohmann::json& args) {
 }
 
 Result<nlohmann::json> SimDriver::inject_disconnect(const nlohmann::json& args) {
-  if (auto error = unexpected_arguments("disconnect", args)) return *error;
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  const auto for_ms = reader.integer_or("for_ms", 0, 0, 600'000);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("disconnect", errors);
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  link_down_until_ns_.store(static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec + for_ms * 1'000'000);
   change_injected_faults([](InjectedFaults& faults) { faults.link_lost = true; });
-  return nlohmann::json{{"link", "disconnected"}};
+  return nlohmann::json{{"link", "disconnected"}, {"for_ms", for_ms}};
 }
 
 Result<nlohmann::json> SimDriver::raise_fault(const nlohmann::json& args) {

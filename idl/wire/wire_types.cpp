@@ -171,6 +171,22 @@ Imu Wire<Imu>::from_c(const C& in) {
   return out;
 }
 
+const dds_topic_descriptor_t& Wire<PoseStamped>::descriptor() { return geometry_msgs_msg_dds__PoseStamped__desc; }
+
+void Wire<PoseStamped>::to_c(const PoseStamped& in, C& out, CArena& /*arena*/) {
+  header_to_c(in.header, out.header);
+  out.pose.position = {in.position.x, in.position.y, in.position.z};
+  out.pose.orientation = {in.orientation.x, in.orientation.y, in.orientation.z, in.orientation.w};
+}
+
+PoseStamped Wire<PoseStamped>::from_c(const C& in) {
+  PoseStamped out;
+  out.header = header_from_c(in.header);
+  out.position = {in.pose.position.x, in.pose.position.y, in.pose.position.z};
+  out.orientation = {in.pose.orientation.x, in.pose.orientation.y, in.pose.orientation.z, in.pose.orientation.w};
+  return out;
+}
+
 const dds_topic_descriptor_t& Wire<SessionStatus>::descriptor() { return robotd_msgs_msg_dds__SessionStatus__desc; }
 
 void Wire<SessionStatus>::to_c(const SessionStatus& in, C& out, CArena& arena) {

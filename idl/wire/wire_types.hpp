@@ -25,6 +25,7 @@ struct Wire;
 ROBOTD_WIRE_TYPE(ControlCommand, robotd_msgs_msg_dds__ControlCommand_);
 ROBOTD_WIRE_TYPE(JointState, sensor_msgs_msg_dds__JointState_);
 ROBOTD_WIRE_TYPE(Imu, sensor_msgs_msg_dds__Imu_);
+ROBOTD_WIRE_TYPE(PoseStamped, geometry_msgs_msg_dds__PoseStamped_);
 ROBOTD_WIRE_TYPE(SessionStatus, robotd_msgs_msg_dds__SessionStatus_);
 ROBOTD_WIRE_TYPE(DeviceStatus, robotd_msgs_msg_dds__DeviceStatus_);
 ROBOTD_WIRE_TYPE(RequestControlRequest, robotd_msgs_srv_dds__RequestControl_Request_);

@@ -182,7 +182,7 @@ TEST_F(SafetyTest, StoppedFeedbackBecomesAFaultNamingTheSilence) {
 }
 
 TEST_F(SafetyTest, LostLinkIsAFaultAndRecoverReconnects) {
-  start_robotd();
+  start_robotd(sim_arm_config(domain_.id(), nullptr, {{"reconnect_interval_ms", 0}}));  // by hand only
   ASSERT_TRUE(client().device_call("arm", "disconnect"));
   DeviceStatus status = device_status();
   for (int i = 0; i < 20 && status.state != DeviceState::kFault; ++i) status = device_status();
@@ -197,6 +197,35 @@ TEST_F(SafetyTest, LostLinkIsAFaultAndRecoverReconnects) {
   ASSERT_TRUE(client().device_call("arm", "recover"));
   EXPECT_EQ(device_status().state, DeviceState::kRunning);
   EXPECT_EQ(sim_state()["link"], "connected");
+}
+
+TEST_F(SafetyTest, LostLinkReconnectsByItselfWhenTheLinkReturnsAndTheArmDoesNotJump) {
+  start_robotd(sim_arm_config(domain_.id(), nullptr, {{"reconnect_interval_ms", 200}}));
+  Session session = acquire({0, 1});
+  ASSERT_TRUE(wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.send_positions({0.6F, -0.4F});
+        return std::fabs(s.position[0] - 0.6) < 0.01 && std::fabs(s.position[1] + 0.4) < 0.01;
+      },
+      5s));
+
+  ASSERT_TRUE(client().device_call("arm", "disconnect", R"({"for_ms": 1500})"));
+  const auto lost_at = std::chrono::steady_clock::now();
+  DeviceStatus status = device_status();
+  for (int i = 0; i < 20 && status.state != DeviceState::kFault; ++i) status = device_status();
+  EXPECT_EQ(status.state, DeviceState::kFault);
+  EXPECT_NE(status.fault_text.find("link lost"), std::string::npos) << status.fault_text;
+
+  bool back = false;
+  while (!back && std::chrono::steady_clock::now() - lost_at < 5s)
+    back = device_status().state == DeviceState::kRunning;
+  ASSERT_TRUE(back) << "robotd did not reconnect after the outage";
+  EXPECT_GE(std::chrono::steady_clock::now() - lost_at, 1400ms) << "reconnected while the link was still down";
+  std::this_thread::sleep_for(300ms);
+  const JointState after = joint_state();
+  EXPECT_NEAR(after.position[0], 0.6, 0.05) << "the arm moved on reconnect";
+  EXPECT_NEAR(after.position[1], -0.4, 0.05) << "the arm moved on reconnect";
+  EXPECT_NE(robotd_->log().find("device 'arm': reconnected after"), std::string::npos) << robotd_->log();
 }
 
 TEST_F(SafetyTest, ClampPolicyClampsInsteadOfRejecting) {

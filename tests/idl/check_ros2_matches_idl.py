@@ -42,6 +42,9 @@ STANDARD_ROS_TYPES = {
     "std_msgs/msg/Header": [("builtin_interfaces/Time", "stamp"), ("string", "frame_id")],
     "geometry_msgs/msg/Vector3": [("float64", "x"), ("float64", "y"), ("float64", "z")],
     "geometry_msgs/msg/Quaternion": [("float64", "x"), ("float64", "y"), ("float64", "z"), ("float64", "w")],
+    "geometry_msgs/msg/Point": [("float64", "x"), ("float64", "y"), ("float64", "z")],
+    "geometry_msgs/msg/Pose": [("geometry_msgs/Point", "position"), ("geometry_msgs/Quaternion", "orientation")],
+    "geometry_msgs/msg/PoseStamped": [("std_msgs/Header", "header"), ("geometry_msgs/Pose", "pose")],
     "sensor_msgs/msg/JointState": [
         ("std_msgs/Header", "header"),
         ("string[]", "name"),

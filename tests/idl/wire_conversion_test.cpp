@@ -49,6 +49,7 @@ inline auto fields(const ControlCommand& m) {
                   m.sent_steady_ns);
 }
 inline auto fields(const JointState& m) { return std::tie(m.header, m.name, m.position, m.velocity, m.effort); }
+inline auto fields(const PoseStamped& m) { return std::tie(m.header, m.position, m.orientation); }
 inline auto fields(const Imu& m) {
   return std::tie(m.header, m.orientation, m.angular_velocity, m.linear_acceleration);
 }
@@ -147,6 +148,10 @@ ControlCommand sample() {
 template <>
 JointState sample() {
   return JointState{header(2), {"j1", "j2"}, {0.5, -0.5}, {1.5, -1.5}, {2.5, -2.5}};
+}
+template <>
+PoseStamped sample() {
+  return PoseStamped{header(9), Vector3{0.25, -0.5, 0.75}, Quaternion{0.5, 0.5, 0.5, 0.5}};
 }
 template <>
 Imu sample() {
@@ -254,7 +259,7 @@ template <class T>
 class WireConversion : public ::testing::Test {};
 
 using AllWireTypes =
-    ::testing::Types<ControlCommand, JointState, Imu, SessionStatus, DeviceStatus, RequestControlRequest,
+    ::testing::Types<ControlCommand, JointState, Imu, PoseStamped, SessionStatus, DeviceStatus, RequestControlRequest,
                      RequestControlResponse, ReleaseControlRequest, ReleaseControlResponse, GetAvailableMotorsRequest,
                      GetAvailableMotorsResponse, ResetZeroRequest, ResetZeroResponse, EstopRequest, EstopResponse,
                      ListDevicesRequest, ListDevicesResponse, DeviceCallRequest, DeviceCallResponse>;

@@ -161,6 +161,11 @@ Subscription Client::on_imu(std::function<void(const Imu&)> callback) {
   return core_->subscribe<Imu>(wire::kImuTopic, qos.get(), std::move(callback));
 }
 
+Subscription Client::on_end_pose(std::function<void(const PoseStamped&)> callback) {
+  const auto qos = wire::reliable_qos(kStateHistoryDepth);
+  return core_->subscribe<PoseStamped>(wire::kEndPoseTopic, qos.get(), std::move(callback));
+}
+
 Result<JointState> Client::next_joint_state(const std::string& device, std::chrono::milliseconds timeout) {
   FirstValue<JointState> first;
   Subscription subscription = on_joint_states([&](const JointState& state) {

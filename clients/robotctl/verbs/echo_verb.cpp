@@ -76,6 +76,11 @@ robotd::Subscription subscribe(robotd::Client& client, const EchoOptions& option
       if (wanted(imu.header.frame_id)) emit(sample_text(imu, json, &imu_text));
     });
   }
+  if (options.topic == "end_pose") {
+    return client.on_end_pose([=](const robotd::PoseStamped& pose) {
+      if (wanted(pose.header.frame_id)) emit(sample_text(pose, json, &end_pose_text));
+    });
+  }
   return client.on_session_status(
       [=](const robotd::SessionStatus& status) { emit(sample_text(status, json, &session_status_text)); });
 }
@@ -83,8 +88,8 @@ robotd::Subscription subscribe(robotd::Client& client, const EchoOptions& option
 int echo(VerbContext& context, const EchoOptions& options) {
   if (options.topic == "session_status" && !options.device.empty()) {
     return report_usage_error(
-        "session_status covers every device; --device applies to joint_states, device_status "
-        "and imu");
+        "session_status covers every device; --device applies to joint_states, device_status, "
+        "imu and end_pose");
   }
   if (auto devices = list_devices_including(context.client, options.device); !devices) {
     return report_failure(devices.error(), context.client.options());
@@ -111,10 +116,10 @@ Verb add_echo_verb(CLI::App& app) {
   CLI::App* command = app.add_subcommand("echo", "Print the samples of a robotd topic as they arrive");
   command
       ->add_option("TOPIC", options->topic,
-                   "joint_states, session_status, device_status or imu (a leading '/' is accepted)")
+                   "joint_states, session_status, device_status, imu or end_pose (a leading '/' is accepted)")
       ->required()
       ->transform([](const std::string& topic) { return topic.starts_with('/') ? topic.substr(1) : topic; })
-      ->check(CLI::IsMember({"joint_states", "session_status", "device_status", "imu"}));
+      ->check(CLI::IsMember({"joint_states", "session_status", "device_status", "imu", "end_pose"}));
   command->add_option("--device", options->device, "Only samples of this device");
   command->add_option("--count", options->count, "Stop after this many samples (default: until Ctrl-C)")
       ->check(CLI::PositiveNumber);

@@ -108,6 +108,9 @@ Result<void> Daemon::start_dds() {
       wire::TopicWriter<DeviceStatus>::create(*participant_, wire::kDeviceStatusTopic, state_qos.get());
   if (!device_status) return device_status.error();
   device_status_ = std::make_unique<wire::TopicWriter<DeviceStatus>>(std::move(device_status.value()));
+  auto end_pose = wire::TopicWriter<PoseStamped>::create(*participant_, wire::kEndPoseTopic, state_qos.get());
+  if (!end_pose) return end_pose.error();
+  end_pose_ = std::make_unique<wire::TopicWriter<PoseStamped>>(std::move(end_pose.value()));
 
   auto session_status = dds::SessionStatusPublisher::create(
       *participant_, std::chrono::milliseconds(config_.daemon.session_status_period_ms));
@@ -120,7 +123,7 @@ Result<void> Daemon::start_dds() {
       [this] { session_status_->changed(); });
   intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_);
 
-  const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get()};
+  const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get(), end_pose_.get()};
   std::vector<service::DeviceObserver*> observers;
   std::vector<device::BlackBox*> boxes;
   for (std::size_t i = 0; i < devices_.size(); ++i) {
@@ -130,11 +133,13 @@ Result<void> Daemon::start_dds() {
     boxes.push_back(black_boxes_[i].get());
   }
   device_services_ = std::make_unique<service::DeviceServices>(device_ptrs_, boxes, observers, *sessions_);
+  reconnector_ = std::make_unique<service::Reconnector>(device_ptrs_, observers);
   auto services = dds::ServiceHost::create(*participant_, *sessions_, *device_services_);
   if (!services) return services.error();
   services_ = std::move(services.value());
 
   for (auto& publisher : publishers_) publisher->start();
+  reconnector_->start();
   session_status_->start(*sessions_);
   if (auto started = intake_->start(); !started) return started;
   services_->start();
@@ -153,10 +158,12 @@ void Daemon::stop() {
   stopped_ = true;
   if (services_) services_->stop();
   if (intake_) intake_->stop();
+  if (reconnector_) reconnector_->stop();
   for (auto& device : devices_) device->request_stop();  // all devices stop in parallel
   for (auto& device : devices_) device->stop();
   for (auto& publisher : publishers_) publisher->finish();
   if (session_status_) session_status_->stop();
+  reconnector_.reset();
   publishers_.clear();
   services_.reset();
   intake_.reset();
@@ -166,6 +173,7 @@ void Daemon::stop() {
   joint_states_.reset();
   imu_.reset();
   device_status_.reset();
+  end_pose_.reset();
   participant_.reset();
   spdlog::info("robotd stopped: every device brought to its safe stop and disconnected");
 }

@@ -16,6 +16,7 @@
 #include "device/device.hpp"
 #include "rt/realtime_environment.hpp"
 #include "service/device_services.hpp"
+#include "service/reconnector.hpp"
 #include "service/session_service.hpp"
 #include "wire/participant.hpp"
 
@@ -50,11 +51,13 @@ class Daemon {
   std::unique_ptr<wire::TopicWriter<JointState>> joint_states_;
   std::unique_ptr<wire::TopicWriter<Imu>> imu_;
   std::unique_ptr<wire::TopicWriter<DeviceStatus>> device_status_;
+  std::unique_ptr<wire::TopicWriter<PoseStamped>> end_pose_;
   std::unique_ptr<dds::SessionStatusPublisher> session_status_;
   std::unique_ptr<service::SessionService> sessions_;
   std::unique_ptr<service::DeviceServices> device_services_;
   std::unique_ptr<dds::CommandIntake> intake_;
   std::unique_ptr<dds::ServiceHost> services_;
+  std::unique_ptr<service::Reconnector> reconnector_;
   std::vector<std::unique_ptr<dds::StatePublisher>> publishers_;
   std::vector<std::uint64_t> watched_ticks_;
   bool stopped_ = false;

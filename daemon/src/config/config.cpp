@@ -109,8 +109,11 @@ DeviceConfig read_device(JsonReader& reader, int cpu_count) {
   device.shutdown_ms = static_cast<int>(reader.integer_or("shutdown_ms", device.shutdown_ms, 0, 10'000));
   device.feedback_timeout_ms =
       static_cast<int>(reader.integer_or("feedback_timeout_ms", device.feedback_timeout_ms, 1, 60'000));
+  device.reconnect_interval_ms =
+      static_cast<int>(reader.integer_or("reconnect_interval_ms", device.reconnect_interval_ms, 0, 600'000));
   device.joint_state_rate_hz =
       static_cast<int>(reader.integer_or("joint_state_rate_hz", device.joint_state_rate_hz, 0, 10'000));
+  device.end_pose_rate_hz = static_cast<int>(reader.integer_or("end_pose_rate_hz", device.end_pose_rate_hz, 0, 1000));
   if (device.joint_state_rate_hz > device.rate_hz) {
     reader.error("joint_state_rate_hz", "must not exceed rate_hz (" + std::to_string(device.rate_hz) + ")");
   }

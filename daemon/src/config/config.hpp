@@ -45,7 +45,9 @@ struct DeviceConfig {
   Behavior shutdown_behavior = Behavior::kDamping;  // when robotd stops
   int shutdown_ms = 300;
   int feedback_timeout_ms = 100;
-  int joint_state_rate_hz = 0;  // 0 = rate_hz
+  int reconnect_interval_ms = 1000;  // after a lost link, try recover() this often; 0 = only by hand
+  int joint_state_rate_hz = 0;       // 0 = rate_hz
+  int end_pose_rate_hz = 50;         // /end_pose for devices whose driver reports one; 0 = off
   nlohmann::json params = nlohmann::json::object();
 };
 

@@ -28,6 +28,7 @@ struct DeviceModel {
   bool supports_torque = false;
   BehaviorSupport behaviors;
   bool has_imu = false;
+  bool has_end_pose = false;
   LimitPolicy limit_policy = LimitPolicy::kReject;
   std::vector<driver::OpDescription> ops;
 

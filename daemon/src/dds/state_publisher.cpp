@@ -100,7 +100,10 @@ void StatePublisher::drain_loop(bool publish_state) {
       const std::lock_guard lock(latest_mutex_);
       latest_ = *state;
     }
-    if (publish_state) publish_joint_state(*state);
+    if (publish_state) {
+      publish_joint_state(*state);
+      publish_end_pose(*state);
+    }
   }
 }
 
@@ -169,6 +172,24 @@ void StatePublisher::publish_joint_state(const device::LoopState& state) {
                                sample.linear_acceleration_m_s2[2]};
     (void)writers_.imu->write(imu);
   }
+}
+
+void StatePublisher::publish_end_pose(const device::LoopState& state) {
+  const int rate_hz = device_.config().end_pose_rate_hz;
+  if (rate_hz <= 0 || !device_.model().has_end_pose || !state.feedback.has_end_pose || writers_.end_pose == nullptr) {
+    return;
+  }
+  const std::int64_t now = rt::monotonic_now_ns();
+  if (now < next_end_pose_ns_) return;
+  next_end_pose_ns_ = now + rt::kNsPerSecond / rate_hz;
+  const driver::Pose& pose = state.feedback.end_pose;
+  PoseStamped message;
+  message.header.stamp = Time::from_ns(rt::realtime_now_ns());
+  message.header.frame_id = device_.model().name;
+  message.position = {pose.position_m[0], pose.position_m[1], pose.position_m[2]};
+  message.orientation = {pose.orientation_xyzw[0], pose.orientation_xyzw[1], pose.orientation_xyzw[2],
+                         pose.orientation_xyzw[3]};
+  (void)writers_.end_pose->write(message);
 }
 
 DeviceStatus StatePublisher::device_status() const {

@@ -24,6 +24,7 @@ struct StateWriters {
   const wire::TopicWriter<JointState>* joint_states = nullptr;
   const wire::TopicWriter<Imu>* imu = nullptr;
   const wire::TopicWriter<DeviceStatus>* device_status = nullptr;
+  const wire::TopicWriter<PoseStamped>* end_pose = nullptr;
 };
 
 class StatePublisher final : public service::DeviceObserver {
@@ -49,6 +50,7 @@ class StatePublisher final : public service::DeviceObserver {
   void drain_loop(bool publish_state);
   void handle(const device::LoopEvent& event);
   void publish_joint_state(const device::LoopState& state);
+  void publish_end_pose(const device::LoopState& state);
   void publish_device_status();
 
   device::Device& device_;
@@ -67,6 +69,7 @@ class StatePublisher final : public service::DeviceObserver {
   std::uint64_t joint_states_published_ = 0;
   std::int64_t last_published_stamp_ns_ = 0;
   JointState joint_state_;
+  std::int64_t next_end_pose_ns_ = 0;
   mutable std::mutex latest_mutex_;
   device::LoopState latest_{};
   std::atomic<bool> stopping_{false};

@@ -310,9 +310,16 @@ void ControlLoop::leave_safe_state() noexcept {
   }
 }
 
-void ControlLoop::latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns) noexcept {
+void ControlLoop::latch_io_fault(driver::IoResult result, std::int64_t now_ns) noexcept {
+  const bool link_lost = result == driver::IoResult::kDisconnected;
+  if (link_lost && io_fault_.code == 0) io_fault_.code = kFaultLinkLost;
+  latch_fault(io_fault_, now_ns, link_lost);
+}
+
+void ControlLoop::latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns, bool link_lost) noexcept {
   if (fault_latched_) return;
   fault_latched_ = true;
+  link_lost_ = link_lost;
   fault_ = fault;
   enter_safe_state();
   LoopEvent event;
@@ -341,6 +348,7 @@ void ControlLoop::handle_maintenance(std::int64_t now_ns) noexcept {
     in_maintenance_ = false;
     if (channel_.maintenance_clears_fault.exchange(false, std::memory_order_acq_rel)) {
       fault_latched_ = false;
+      link_lost_ = false;
       fault_.clear();
     }
     have_feedback_ = false;
@@ -362,8 +370,7 @@ void ControlLoop::read_feedback(std::int64_t now_ns) noexcept {
       if (!fault_latched_ && !estop_applied_) leave_safe_state();
     }
   } else if (is_link_problem(result)) {
-    if (result == driver::IoResult::kDisconnected && io_fault_.code == 0) io_fault_.code = kFaultLinkLost;
-    latch_fault(io_fault_, now_ns);
+    latch_io_fault(result, now_ns);
   }
   if (last_feedback_ns_ == 0) last_feedback_ns_ = now_ns;
   if (!fault_latched_ && now_ns - last_feedback_ns_ > settings_.feedback_timeout_ns) {
@@ -406,16 +413,16 @@ void ControlLoop::write_command(std::int64_t deadline_ns, std::int64_t now_ns) n
   }
   if (!have_feedback_) return;  // nothing sensible to command before the first feedback
   const driver::IoResult result = driver_.write(frame_, io_fault_);
-  if (is_link_problem(result)) {
-    if (result == driver::IoResult::kDisconnected && io_fault_.code == 0) io_fault_.code = kFaultLinkLost;
-    latch_fault(io_fault_, now_ns);
-  }
+  if (is_link_problem(result)) latch_io_fault(result, now_ns);
 }
 
 DeviceState ControlLoop::current_state() const noexcept {
   if (finished_) return DeviceState::kStopped;
-  if (in_maintenance_ || reinit_pending_) return DeviceState::kMaintenance;
+  if (in_maintenance_) return DeviceState::kMaintenance;
+  // A maintenance call that left the fault latched (a failed reconnect) leaves the device in
+  // FAULT, not waiting for feedback that may never come.
   if (fault_latched_) return DeviceState::kFault;
+  if (reinit_pending_) return DeviceState::kMaintenance;
   if (estop_applied_) return DeviceState::kEstop;
   if (!have_feedback_) return DeviceState::kConnecting;
   return DeviceState::kRunning;
@@ -430,6 +437,7 @@ void ControlLoop::publish(std::int64_t now_ns, std::int64_t /*wake_latency_ns*/)
   out.state = state;
   out.estop = estop_applied_;
   out.fault = fault_;
+  out.link_lost = link_lost_;
   out.feedback = feedback_;
   out.overruns = overruns_;
   out.rt_allocations = rt_allocations_;

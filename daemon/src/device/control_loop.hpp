@@ -76,7 +76,8 @@ class ControlLoop {
   void update_shutdown(std::int64_t now_ns) noexcept;
   void enter_safe_state() noexcept;
   void leave_safe_state() noexcept;
-  void latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns) noexcept;
+  void latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns, bool link_lost = false) noexcept;
+  void latch_io_fault(driver::IoResult result, std::int64_t now_ns) noexcept;
   void write_command(std::int64_t deadline_ns, std::int64_t now_ns) noexcept;
   void publish(std::int64_t now_ns, std::int64_t wake_latency_ns) noexcept;
   void record_black_box(std::int64_t now_ns, std::int64_t wake_latency_ns) noexcept;
@@ -110,6 +111,7 @@ class ControlLoop {
   bool have_feedback_ = false;
   std::int64_t last_feedback_ns_ = 0;
   bool fault_latched_ = false;
+  bool link_lost_ = false;  // the latched fault is a lost link (the driver said kDisconnected)
   bool estop_applied_ = false;
   bool safe_state_ = false;
   bool in_maintenance_ = false;

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include <spdlog/spdlog.h>
+
 #include "rt/monotonic_clock.hpp"
 
 namespace robotd::device {
@@ -51,6 +53,7 @@ Result<void> Device::configure() {
   model_.supports_torque = description.supports_torque;
   model_.behaviors = control::BehaviorSupport{description.supports_damping, description.supports_zero_torque};
   model_.has_imu = description.has_imu;
+  model_.has_end_pose = description.has_end_pose;
   model_.limit_policy = config_.limit_policy;
   model_.ops = description.ops;
   for (const auto& joint : description.joints) {
@@ -88,10 +91,17 @@ Result<void> Device::configure() {
 
 Result<void> Device::start() {
   if (auto connected = plugin_->driver().connect(); !connected) {
-    return make_error(connected.error().code,
-                      "device '" + config_.name + "' (" + config_.driver + "): " + connected.error().message);
+    // A device that is just not there yet (powered later, a simulator started after robotd)
+    // starts as a lost link and is connected by the reconnector once it answers.
+    const bool retry = connected.error().code == ErrorCode::kNotAvailable && config_.reconnect_interval_ms > 0;
+    if (!retry) {
+      return make_error(connected.error().code,
+                        "device '" + config_.name + "' (" + config_.driver + "): " + connected.error().message);
+    }
+    spdlog::warn("device '{}' ({}): not reachable yet: {}; starting it as a lost link and retrying every {} ms",
+                 config_.name, config_.driver, connected.error().message, config_.reconnect_interval_ms);
   }
-  connected_ = true;
+  connected_ = true;  // from here on the driver is ours to disconnect, whether or not it is connected now
 
   LoopSettings settings;
   settings.rate_hz = config_.rate_hz;

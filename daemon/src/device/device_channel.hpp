@@ -94,6 +94,7 @@ struct LoopState {
   DeviceState state = DeviceState::kConnecting;
   bool estop = false;
   driver::FaultInfo fault;
+  bool link_lost = false;  // the fault is a lost link: robotd may reconnect on its own
   driver::Feedback feedback;
   std::uint64_t overruns = 0;
   std::int64_t rt_allocations = -1;

@@ -74,6 +74,13 @@ struct Vector3 {
 struct Quaternion {
   double x = 0, y = 0, z = 0, w = 1;
 };
+/// An end effector's pose (geometry_msgs/PoseStamped); frame_id = device name.
+struct PoseStamped {
+  Header header;
+  Vector3 position;  // m
+  Quaternion orientation;
+};
+
 struct Imu {
   Header header;  // frame_id = device name
   Quaternion orientation;

@@ -233,6 +233,21 @@ TEST_F(SimDriverTest, InjectedDisconnectReportsLinkLostUntilRecoverWithoutAPosit
   EXPECT_EQ(diagnostic("link"), "connected");
 }
 
+TEST_F(SimDriverTest, TimedDisconnectRefusesRecoverUntilTheOutageIsOver) {
+  start();
+  call("disconnect", {{"for_ms", 150}});
+  EXPECT_EQ(read(), IoResult::kDisconnected);
+  const Result<void> early = driver_.recover();
+  ASSERT_FALSE(early.ok());
+  EXPECT_EQ(early.error().code, ErrorCode::kNotAvailable);
+  EXPECT_NE(early.error().message.find("simulated link still down"), std::string::npos) << early.error().message;
+  EXPECT_EQ(read(), IoResult::kDisconnected);
+
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ASSERT_TRUE(driver_.recover().ok());
+  EXPECT_EQ(read(), IoResult::kOk);
+}
+
 TEST_F(SimDriverTest, InjectedFaultReportsItsCodeAndTextUntilRecover) {
   start();
   run(position_frame(-0.4), 1.0);
@@ -438,7 +453,8 @@ TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {
       {"set_external_torque", R"({"joint": 1.5, "torque_nm": 1})",
        "set_external_torque: args.joint: expected a joint name or an index 0..5, got 1.5"},
       {"state", R"({"verbose": true})", R"(state: args.verbose: unknown key (this op takes no arguments))"},
-      {"disconnect", "[]", "disconnect: args: expected an object, got array"},
+      {"disconnect", "[]", "disconnect: args: expected an object, got []"},
+      {"disconnect", R"({"for_ms": -1})", "disconnect: args.for_ms: expected an integer in 0..600000, got -1"},
   };
   for (const auto& test_case : cases) {
     const Result<json> result = driver_.call(test_case.op, json::parse(test_case.args));

@@ -53,6 +53,8 @@ class Client {
   Subscription on_session_status(std::function<void(const SessionStatus&)> callback);
   Subscription on_device_status(std::function<void(const DeviceStatus&)> callback);
   Subscription on_imu(std::function<void(const Imu&)> callback);
+  /// End-effector poses of devices whose driver computes one (frame_id = device).
+  Subscription on_end_pose(std::function<void(const PoseStamped&)> callback);
 
   /// The next JointState / DeviceStatus of `device` ("" = any), or a timeout error.
   Result<JointState> next_joint_state(const std::string& device, std::chrono::milliseconds timeout);

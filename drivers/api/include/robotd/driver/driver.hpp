@@ -25,7 +25,7 @@
 namespace robotd::driver {
 
 /// Bump when anything in this header or types.hpp changes layout or meaning.
-inline constexpr std::uint32_t kAbiVersion = 1;
+inline constexpr std::uint32_t kAbiVersion = 2;
 
 struct JointLimits {
   double position_min_rad = -3.14;
@@ -57,6 +57,7 @@ struct DeviceDescription {
   bool supports_damping = false;      // can hold joints with kp = 0, kd > 0
   bool supports_zero_torque = false;  // can let joints go (kp = kd = torque = 0)
   bool has_imu = false;
+  bool has_end_pose = false;  // Feedback carries the end effector's pose
   std::vector<OpDescription> ops;
 };
 
@@ -71,12 +72,16 @@ class Driver {
   virtual Result<void> configure(const nlohmann::json& params) = 0;
   virtual DeviceDescription describe() const = 0;
 
+  /// Opens the link. ErrorCode::kNotAvailable means "not reachable now, may be later": robotd
+  /// then starts the device as a lost link and retries through recover().
   virtual Result<void> connect() = 0;
+  /// Safe to call whether or not connect() succeeded.
   virtual void disconnect() noexcept = 0;
   /// Clears a latched fault and re-establishes the link if needed.
   virtual Result<void> recover() = 0;
   virtual Result<void> reset_zero(std::span<const int> joints) = 0;
 
+  /// Before a successful connect() or recover(), read and write return kDisconnected.
   virtual IoResult read(Feedback& out, FaultInfo& fault) noexcept = 0;
   virtual IoResult write(const CommandFrame& command, FaultInfo& fault) noexcept = 0;
 

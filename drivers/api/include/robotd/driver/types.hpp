@@ -53,11 +53,19 @@ struct ImuSample {
   std::array<double, 3> linear_acceleration_m_s2{};
 };
 
+/// A pose in the device's base frame.
+struct Pose {
+  std::array<double, 3> position_m{};
+  std::array<double, 4> orientation_xyzw{0, 0, 0, 1};
+};
+
 struct Feedback {
   std::size_t joint_count = 0;
   std::array<JointFeedback, kMaxJoints> joints{};
   bool has_imu = false;
   ImuSample imu{};
+  bool has_end_pose = false;  // the end effector's pose (e.g. forward kinematics of the joints)
+  Pose end_pose{};
 };
 
 /// A device fault as the driver reports it: a vendor code and a short human-readable text.
