@@ -26,7 +26,7 @@
 #include "joint_dynamics.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/json_reader.hpp"
-#include "seqlock.hpp"
+#include "robotd/driver/seqlock.hpp"
 #include "sim_params.hpp"
 
 namespace robotd::sim {
@@ -125,9 +125,9 @@ class SimDriver final : public driver::Driver {
   std::array<std::atomic<std::int32_t>, kLatencySamples> latency_ns_{};
   std::atomic<std::uint64_t> latency_count_{0};
   std::atomic<std::uint64_t> latency_reset_at_{0};
-  SeqLock<InjectedFaults> injected_faults_;
+  driver::SeqLock<InjectedFaults> injected_faults_;
   std::mutex injected_faults_writer_mutex_;  // serialises non-RT writers; never taken by the RT thread
-  SeqLock<SimSnapshot> snapshot_;
+  driver::SeqLock<SimSnapshot> snapshot_;
 
   // RT thread only.
   std::array<JointState, driver::kMaxJoints> joints_{};

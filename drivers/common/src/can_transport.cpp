@@ -1,5 +1,8 @@
 #include "robotd/transport/can_transport.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cstdio>
 #include <linux/can/error.h>
 #include <string>
 
@@ -29,9 +32,14 @@ std::unique_ptr<CanTransport> make_can_transport(const CanLinkConfig& config) {
   return std::make_unique<SocketCanTransport>(config.interface, config.fd);
 }
 
-std::string describe_bus_error(const CanMessage& error_frame) {
-  std::string text;
-  const auto add = [&](const char* what) { text += (text.empty() ? "" : ", ") + std::string(what); };
+void describe_bus_error(const CanMessage& error_frame, std::span<char> out) noexcept {
+  if (out.empty()) return;
+  std::size_t used = 0;
+  out[0] = '\0';
+  const auto add = [&](const char* what) {
+    const int written = std::snprintf(out.data() + used, out.size() - used, "%s%s", used == 0 ? "" : ", ", what);
+    if (written > 0) used = std::min(out.size() - 1, used + static_cast<std::size_t>(written));
+  };
   const std::uint32_t classes = error_frame.id;
   if ((classes & CAN_ERR_BUSOFF) != 0) add("bus off");
   if ((classes & CAN_ERR_RESTARTED) != 0) add("controller restarted");
@@ -53,7 +61,13 @@ std::string describe_bus_error(const CanMessage& error_frame) {
       add("controller problem");
     }
   }
-  return text.empty() ? "unknown CAN error" : text;
+  if (used == 0) add("unknown CAN error");
+}
+
+std::string describe_bus_error(const CanMessage& error_frame) {
+  std::array<char, 256> text{};
+  describe_bus_error(error_frame, text);
+  return text.data();
 }
 
 }  // namespace robotd::transport

@@ -1,4 +1,4 @@
-#include "seqlock.hpp"
+#include "robotd/driver/seqlock.hpp"
 
 #include <array>
 #include <atomic>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-namespace robotd::sim {
+namespace robotd::driver {
 namespace {
 
 // Not a multiple of 8 bytes: exercises the partial last word.
@@ -17,7 +17,7 @@ struct Sample {
   std::uint32_t tail = 0;
 };
 
-TEST(SimSeqLock, LoadReturnsTheLastStoredValue) {
+TEST(SeqLock, LoadReturnsTheLastStoredValue) {
   SeqLock<Sample> lock;
   Sample sample;
   sample.words.fill(7);
@@ -28,7 +28,7 @@ TEST(SimSeqLock, LoadReturnsTheLastStoredValue) {
   EXPECT_EQ(loaded.tail, 9u);
 }
 
-TEST(SimSeqLock, ReadersNeverSeeATornValue) {
+TEST(SeqLock, ReadersNeverSeeATornValue) {
   SeqLock<Sample> lock;
   std::atomic<bool> reading{true};
   std::thread writer([&] {
@@ -56,4 +56,4 @@ TEST(SimSeqLock, ReadersNeverSeeATornValue) {
 }
 
 }  // namespace
-}  // namespace robotd::sim
+}  // namespace robotd::driver

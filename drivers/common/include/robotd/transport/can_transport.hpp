@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -52,5 +53,7 @@ std::unique_ptr<CanTransport> make_can_transport(const CanLinkConfig& config);
 
 /// Decodes a controller error frame (SocketCAN's CAN_ERR_* classes) into words.
 std::string describe_bus_error(const CanMessage& error_frame);
+/// The same into a NUL-terminated buffer (truncated to fit), for the RT thread: no allocation.
+void describe_bus_error(const CanMessage& error_frame, std::span<char> out) noexcept;
 
 }  // namespace robotd::transport

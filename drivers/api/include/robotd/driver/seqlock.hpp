@@ -12,7 +12,7 @@
 #include <thread>
 #include <type_traits>
 
-namespace robotd::sim {
+namespace robotd::driver {
 
 template <class T>
 class SeqLock {
@@ -68,4 +68,4 @@ class SeqLock {
   std::array<std::atomic<std::uint64_t>, kWords> words_{};
 };
 
-}  // namespace robotd::sim
+}  // namespace robotd::driver

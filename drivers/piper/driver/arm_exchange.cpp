@@ -1,0 +1,81 @@
+// Request → reply exchanges with the arm for the ops: queries (0x472, 0x477, 0x4AF) and
+// settings acknowledged on 0x476. The RT thread reads the bus and hands replies over through
+// the reply ring; an exchange waits on that ring.
+#include <cstdio>
+#include <thread>
+
+#include "driver/piper_driver.hpp"
+
+namespace robotd::piper {
+namespace {
+
+using namespace std::chrono_literals;
+
+std::string hex_id(std::uint32_t id) {
+  std::array<char, 8> text{};
+  std::snprintf(text.data(), text.size(), "0x%03X", id);
+  return text.data();
+}
+
+}  // namespace
+
+Result<std::vector<CanMessage>> PiperDriver::exchange(std::span<const CanMessage> requests, std::uint32_t reply_id,
+                                                      std::size_t count) {
+  if (!snapshot().link_up) {
+    return make_error(ErrorCode::kNotAvailable,
+                      "the arm is not connected (robotctl status shows why; robotctl call <device> recover)");
+  }
+  replies_.clear();
+  for (const CanMessage& request : requests) {
+    if (send(request) != transport::CanIo::kDone) {
+      return make_error(ErrorCode::kTransport, "could not send " + hex_id(request.id) + " on " + link_name_.data());
+    }
+  }
+  std::vector<CanMessage> replies;
+  replies.reserve(count);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  CanMessage message;
+  while (replies.size() < count) {
+    if (replies_.pop(message)) {
+      if (message.id == reply_id && !(reply_id == can_id::kFirmware && is_firmware_request(message))) {
+        replies.push_back(message);
+      }
+      continue;
+    }
+    if (std::chrono::steady_clock::now() >= deadline) {
+      return make_error(ErrorCode::kTimeout, "no answer (" + hex_id(reply_id) + ") from the arm within " +
+                                                 std::to_string(params_.reply_timeout_ms) + " ms; got " +
+                                                 std::to_string(replies.size()) + " of " + std::to_string(count) +
+                                                 " (firmware too old for this query, or the arm is busy?)");
+    }
+    std::this_thread::sleep_for(1ms);
+  }
+  return replies;
+}
+
+Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::uint8_t command) {
+  if (!snapshot().link_up) {
+    return make_error(ErrorCode::kNotAvailable,
+                      "the arm is not connected (robotctl status shows why; robotctl call <device> recover)");
+  }
+  replies_.clear();
+  if (send(request) != transport::CanIo::kDone) {
+    return make_error(ErrorCode::kTransport, "could not send " + hex_id(request.id) + " on " + link_name_.data());
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  CanMessage message;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (!replies_.pop(message)) {
+      std::this_thread::sleep_for(1ms);
+      continue;
+    }
+    const auto frame = decode(message, codec_);
+    const auto* ack = frame ? std::get_if<SetAck>(&*frame) : nullptr;
+    if (ack != nullptr && ack->command == command) return *ack;
+  }
+  return make_error(ErrorCode::kTimeout, "the arm did not acknowledge " + hex_id(request.id) + " (no 0x476 with " +
+                                             hex_id(command) + ") within " + std::to_string(params_.reply_timeout_ms) +
+                                             " ms");
+}
+
+}  // namespace robotd::piper

@@ -1,0 +1,423 @@
+// PiperDriver: configuration, the link's lifecycle and the RT read/write path.
+#include "driver/piper_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <thread>
+
+#include "driver/piper_ops.hpp"
+#include "kinematics/piper_kinematics.hpp"
+#include "robotd/transport/can_interface_check.hpp"
+
+namespace robotd::piper {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr int kMaxFramesPerRead = 512;  // ~1 ms of a saturated bus; the rest waits a tick
+constexpr std::uint32_t kPiperBitrate = 1'000'000;
+constexpr std::int64_t kNsPerSecond = 1'000'000'000;
+constexpr std::size_t kFirmwareReplyBytes = 88;  // 11 frames (spec §5.14)
+
+std::int64_t monotonic_now_ns() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<std::int64_t>(now.tv_sec) * kNsPerSecond + now.tv_nsec;
+}
+
+bool is_reply(std::uint32_t id) {
+  switch (id) {
+    case can_id::kJointLimitReply:
+    case can_id::kSetAck:
+    case can_id::kEndVelAccReply:
+    case can_id::kCrashProtectionReply:
+    case can_id::kJointAccReply:
+    case can_id::kGripperParamReply:
+    case can_id::kFirmware:
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+// --- configuration ------------------------------------------------------------------------------
+
+Result<void> PiperDriver::configure(const nlohmann::json& params) {
+  auto parsed = parse_piper_params(params);
+  if (!parsed) return parsed.error();
+  params_ = std::move(parsed.value());
+  codec_ = params_.codec;
+  transport_ = transport::make_can_transport(params_.can);
+  const std::string name = transport_->describe();
+  std::snprintf(link_name_.data(), link_name_.size(), "%s", name.c_str());
+  streamer_.configure(params_, codec_);
+  configured_ = true;
+  return {};
+}
+
+driver::DeviceDescription PiperDriver::describe() const {
+  driver::DeviceDescription description;
+  description.model = params_.model;
+  description.native_rate_hz = params_.command_rate_hz;
+  for (std::size_t j = 0; j < params_.joint_count(); ++j) {
+    const PiperJointParams& joint = params_.joint(j);
+    description.joints.push_back({joint.name, joint.limits, joint.default_kp, joint.default_kd});
+  }
+  // MIT mode gives torque, damping (kp = 0) and zero torque (kp = kd = 0) on J1–J6.
+  description.supports_torque = true;
+  description.supports_damping = true;
+  description.supports_zero_torque = true;
+  description.has_end_pose = true;
+  description.ops = op_descriptions();
+  return description;
+}
+
+// --- link lifecycle (non-RT) ------------------------------------------------------------------
+
+Result<void> PiperDriver::connect() {
+  if (!configured_) return make_error(ErrorCode::kRefused, "connect: the piper driver is not configured");
+  const std::lock_guard lock(link_mutex_);
+  return connect_locked();
+}
+
+Result<void> PiperDriver::connect_locked() {
+  connected_.store(false);
+  transport_->close();
+  if (params_.can.kind == transport::CanLinkConfig::Kind::kSocketCan && params_.check_interface) {
+    if (auto checked = transport::check_can_interface(params_.can.interface, kPiperBitrate); !checked) {
+      return checked.error();
+    }
+  }
+  if (auto opened = transport_->open(); !opened) return opened.error();
+  arm_ = ArmState{};
+  if (auto fed = await_arm_feedback(std::chrono::milliseconds(params_.connect_timeout_ms)); !fed) {
+    transport_->close();
+    return fed.error();
+  }
+  if (params_.firmware == "auto") detect_firmware();
+  streamer_.configure(params_, codec_);
+  replies_.clear();
+  rate_window_start_ns_ = 0;
+  link_lost_.store(false);
+  connected_.store(true);
+  publish_snapshot();
+  return {};
+}
+
+void PiperDriver::drain_link_blocking_free(std::int64_t now_ns) {
+  CanMessage message;
+  while (transport_->receive(message) == transport::CanIo::kDone) {
+    ++rx_frames_;
+    if (message.id == can_id::kFirmware && !is_firmware_request(message)) {
+      firmware_text_.append(reinterpret_cast<const char*>(message.data.data()), message.length);  // NOLINT
+    }
+    if (const auto frame = decode(message, codec_)) apply_frame(arm_, *frame, now_ns);
+  }
+}
+
+Result<void> PiperDriver::await_arm_feedback(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const std::uint64_t frames_before = rx_frames_;
+  while (std::chrono::steady_clock::now() < deadline) {
+    drain_link_blocking_free(monotonic_now_ns());
+    if (arm_.status_seen && arm_.joints_seen) return {};
+    std::this_thread::sleep_for(1ms);
+  }
+  const std::string link = transport_->describe();
+  const std::string waited = std::to_string(timeout.count()) + " ms";
+  if (rx_frames_ == frames_before) {
+    return make_error(ErrorCode::kNotAvailable, "no frames on " + link + " within " + waited +
+                                                    ": is the arm powered on, its CAN cable connected and the bus "
+                                                    "at 1 Mbit/s?");
+  }
+  return make_error(ErrorCode::kNotAvailable,
+                    "frames arrive on " + link + " but no arm feedback (status 0x2A1 and joints 0x2A5-0x2A7) within " +
+                        waited +
+                        ": an arm configured as master (teach input) sends none; make it a follower with the "
+                        "master_slave op {\"role\": \"slave\"}");
+}
+
+void PiperDriver::detect_firmware() {
+  firmware_text_.clear();
+  firmware_note_.clear();
+  if (transport_->send(firmware_request()) != transport::CanIo::kDone) {
+    firmware_note_ = "could not send the firmware query (0x4AF)";
+    return;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  while (std::chrono::steady_clock::now() < deadline && firmware_text_.size() < kFirmwareReplyBytes) {
+    drain_link_blocking_free(monotonic_now_ns());
+    std::this_thread::sleep_for(1ms);
+  }
+  if (const auto version = software_version(firmware_text_)) {
+    codec_.mit_layout = mit_layout_for(*version);
+    return;
+  }
+  codec_.mit_layout = MitLayout::kTorque8Crc;
+  firmware_note_ =
+      "no answer to the firmware query (0x4AF): MIT frames use the S-V1.8-7 layout; set "
+      "params.firmware if the arm runs S-V1.8-8 or newer";
+}
+
+void PiperDriver::disconnect() noexcept {
+  const std::lock_guard lock(link_mutex_);
+  connected_.store(false);
+  if (transport_) transport_->close();
+}
+
+Result<void> PiperDriver::recover() {
+  if (!configured_) return make_error(ErrorCode::kRefused, "recover: the piper driver is not configured");
+  const std::lock_guard lock(link_mutex_);
+  if (!connected_.load() || link_lost_.load()) return connect_locked();
+  return clear_arm_errors();
+}
+
+Result<void> PiperDriver::clear_arm_errors() {
+  drain_link_blocking_free(monotonic_now_ns());
+  const bool gripper_enabled = (arm_.gripper.status_bits & 0x40U) != 0;
+  const bool arm_estop = arm_.status.arm_status == 0x01;
+  send(encode(JointConfig{.joint = kAllJoints, .clear_error = true}, codec_));
+  if (params_.gripper) {
+    send(encode(GripperControl{.stroke_m = arm_.gripper.stroke_m,
+                               .effort_nm = params_.gripper_effort_nm,
+                               .enable = gripper_enabled ? GripperEnable::kEnableClearError
+                                                         : GripperEnable::kDisableClearError},
+                codec_));
+  }
+  // An e-stop someone else triggered (pendant, another program) is resumed here; robotd's own
+  // e-stop is resumed by robotd's reset.
+  if (arm_estop && !estop_) send(encode(MotionControl{.emergency_stop = EmergencyStop::kResume}, codec_));
+  streamer_.reset();
+
+  // Wait for status frames sent after the clear.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  driver::FaultInfo fault;
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(10ms);
+    drain_link_blocking_free(monotonic_now_ns());
+    fault = arm_fault(arm_, estop_, params_.gripper);
+    if (fault.code == 0) return {};
+  }
+  return make_error(ErrorCode::kRefused,
+                    std::string("the arm still reports a fault after clearing its errors: ") + fault.text.data());
+}
+
+Result<void> PiperDriver::reset_zero(std::span<const int> joints) {
+  std::vector<int> targets(joints.begin(), joints.end());
+  if (targets.empty()) targets = {0, 1, 2, 3, 4, 5};
+  for (const int joint : targets) {
+    if (joint < 0 || joint >= kArmJoints) {
+      return make_error(ErrorCode::kInvalidArgument, "reset_zero: joint index " + std::to_string(joint) +
+                                                         " is not an arm joint (0-5); the gripper is zeroed with "
+                                                         "the gripper op {\"set_zero\": true}");
+    }
+  }
+  const std::lock_guard lock(ops_mutex_);
+  for (const int joint : targets) {
+    auto acked = set_and_await_ack(
+        encode(JointConfig{.joint = static_cast<std::uint8_t>(joint + 1), .set_zero = true}, codec_), 0x75);
+    if (!acked) return acked.error();
+    if (!acked.value().zero_set) {
+      return make_error(ErrorCode::kRefused, "joint " + std::to_string(joint + 1) +
+                                                 ": the arm did not confirm the new zero (0x476 byte 1 = 0)");
+    }
+  }
+  return {};
+}
+
+// --- RT path ------------------------------------------------------------------------------------
+
+driver::IoResult PiperDriver::link_lost(driver::FaultInfo& fault, const char* why) noexcept {
+  if (!link_lost_.load(std::memory_order_relaxed)) {
+    std::array<char, 144> text{};  // fits FaultInfo::text
+    std::snprintf(text.data(), text.size(), "%.80s on %.50s", why, link_name_.data());
+    lost_fault_.set(kLinkLostFault, text.data());
+    link_lost_.store(true);
+    publish_snapshot();
+  }
+  fault = lost_fault_;  // the first reason, until the link is back
+  return driver::IoResult::kDisconnected;
+}
+
+driver::IoResult PiperDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
+  if (!connected_.load(std::memory_order_acquire)) {
+    fault.set(kNotConnectedFault, "not connected (connect() or recover() first)");
+    return driver::IoResult::kDisconnected;
+  }
+  if (link_lost_.load(std::memory_order_relaxed)) return link_lost(fault, "");
+  const std::int64_t now_ns = monotonic_now_ns();
+  bool joints_complete = false;
+  CanMessage message;
+  for (int i = 0; i < kMaxFramesPerRead; ++i) {
+    const transport::CanIo result = transport_->receive(message);
+    if (result == transport::CanIo::kNone) break;
+    if (result == transport::CanIo::kClosed) return link_lost(fault, "CAN link closed");
+    if (result == transport::CanIo::kBusError) {
+      std::array<char, 120> words{};
+      transport::describe_bus_error(message, words);
+      std::array<char, 144> text{};  // fits FaultInfo::text
+      std::snprintf(text.data(), text.size(), "CAN bus error on %.40s: %.80s", link_name_.data(), words.data());
+      fault.set(kBusErrorFault, text.data());
+      publish_snapshot();
+      return driver::IoResult::kFault;
+    }
+    ++rx_frames_;
+    if (is_reply(message.id)) replies_.push(message);
+    const auto frame = decode(message, codec_);
+    if (!frame) {
+      ++arm_.unknown_frames;
+      continue;
+    }
+    joints_complete = apply_frame(arm_, *frame, now_ns) || joints_complete;
+  }
+  update_rates(now_ns);
+  const std::int64_t timeout_ns = static_cast<std::int64_t>(params_.feedback_timeout_ms) * 1'000'000;
+  if (now_ns - arm_.last_status_ns > timeout_ns || now_ns - arm_.last_joints_ns > timeout_ns) {
+    std::array<char, 96> why{};
+    std::snprintf(why.data(), why.size(), "no arm feedback (0x2A1 / 0x2A5-0x2A7) for %lld ms",
+                  static_cast<long long>((now_ns - std::min(arm_.last_status_ns, arm_.last_joints_ns)) / 1'000'000));
+    return link_lost(fault, why.data());
+  }
+  publish_snapshot();
+  if (!joints_complete) return driver::IoResult::kNoNewData;
+  fill_feedback(out, now_ns);
+  return driver::IoResult::kOk;
+}
+
+void PiperDriver::fill_feedback(driver::Feedback& out, std::int64_t now_ns) noexcept {
+  out.joint_count = params_.joint_count();
+  std::array<double, kArmJoints> q{};
+  for (std::size_t j = 0; j < kArmJoints; ++j) {
+    const JointReport& joint = arm_.joints[j];
+    q[j] = joint.position_rad;
+    out.joints[j] = {joint.position_rad, joint.speed_rad_s, joint.current_a * params_.joints[j].effort_nm_per_a};
+  }
+  if (params_.gripper) {
+    // The gripper reports no speed: differentiate its stroke between joint sets.
+    const double stroke = arm_.gripper.stroke_m;
+    const double dt = static_cast<double>(now_ns - gripper_last_ns_) * 1e-9;
+    const double speed = gripper_last_ns_ > 0 && dt > 0 ? (stroke - gripper_last_m_) / dt : 0.0;
+    gripper_last_m_ = stroke;
+    gripper_last_ns_ = now_ns;
+    out.joints[kArmJoints] = {stroke, speed, arm_.gripper.effort_nm};
+  }
+  const CartesianPose pose = forward_kinematics(q, params_.dh);
+  out.has_end_pose = true;
+  out.end_pose.position_m = {pose.x_m, pose.y_m, pose.z_m};
+  out.end_pose.orientation_xyzw = quaternion_xyzw(pose);
+}
+
+driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept {
+  if (!connected_.load(std::memory_order_acquire)) {
+    fault.set(kNotConnectedFault, "not connected (connect() or recover() first)");
+    return driver::IoResult::kDisconnected;
+  }
+  estop_ = command.estop;
+  const bool hold = hold_for_ops_.load(std::memory_order_acquire);
+  streamer_.plan(command, arm_, hold, outgoing_);
+  if (hold && streamer_.any_owned()) hold_for_ops_.store(false, std::memory_order_release);
+  for (std::size_t i = 0; i < outgoing_.count; ++i) {
+    const transport::CanIo result = send(outgoing_.frames[i]);
+    if (result == transport::CanIo::kClosed) return link_lost(fault, "CAN link closed");
+  }
+  const driver::FaultInfo reported = arm_fault(arm_, estop_, params_.gripper);
+  if (reported.code != 0) {
+    fault = reported;
+    return driver::IoResult::kFault;
+  }
+  return driver::IoResult::kOk;
+}
+
+transport::CanIo PiperDriver::send(const CanMessage& message) noexcept {
+  const transport::CanIo result = transport_->send(message);
+  if (result == transport::CanIo::kDone) {
+    tx_frames_.fetch_add(1, std::memory_order_relaxed);
+  } else if (result == transport::CanIo::kNone) {
+    tx_dropped_.fetch_add(1, std::memory_order_relaxed);
+  }
+  return result;
+}
+
+void PiperDriver::update_rates(std::int64_t now_ns) noexcept {
+  const std::uint64_t tx = tx_frames_.load(std::memory_order_relaxed);
+  if (rate_window_start_ns_ == 0) {
+    rate_window_start_ns_ = now_ns;
+    rate_window_rx_ = rx_frames_;
+    rate_window_tx_ = tx;
+    return;
+  }
+  const std::int64_t elapsed_ns = now_ns - rate_window_start_ns_;
+  if (elapsed_ns < kNsPerSecond) return;
+  const double seconds = static_cast<double>(elapsed_ns) * 1e-9;
+  rx_fps_ = static_cast<double>(rx_frames_ - rate_window_rx_) / seconds;
+  tx_fps_ = static_cast<double>(tx - rate_window_tx_) / seconds;
+  rate_window_start_ns_ = now_ns;
+  rate_window_rx_ = rx_frames_;
+  rate_window_tx_ = tx;
+}
+
+void PiperDriver::publish_snapshot() noexcept {
+  ArmSnapshot snapshot;
+  snapshot.arm = arm_;
+  snapshot.link_up = connected_.load(std::memory_order_relaxed) && !link_lost_.load(std::memory_order_relaxed);
+  snapshot.any_owned = streamer_.any_owned();
+  snapshot.estop = estop_;
+  snapshot.rx_frames = rx_frames_;
+  snapshot.tx_frames = tx_frames_.load(std::memory_order_relaxed);
+  snapshot.tx_dropped = tx_dropped_.load(std::memory_order_relaxed);
+  snapshot.rx_fps = rx_fps_;
+  snapshot.tx_fps = tx_fps_;
+  snapshot_.store(snapshot);
+}
+
+ArmSnapshot PiperDriver::snapshot() const { return snapshot_.load(); }
+
+// --- diagnostics (non-RT) ---------------------------------------------------------------------
+
+driver::Diagnostics PiperDriver::diagnostics() const {
+  const ArmSnapshot snapshot = snapshot_.load();
+  const ArmState& arm = snapshot.arm;
+  int enabled = 0;
+  std::string driver_faults;
+  for (std::size_t j = 0; j < kArmJoints; ++j) {
+    if (arm.joints[j].enabled()) ++enabled;
+    const std::string faults = driver_status_text(arm.joints[j].driver_status);
+    if (!faults.empty()) driver_faults += (driver_faults.empty() ? "" : "; ") + params_.joints[j].name + ": " + faults;
+  }
+  std::array<char, 64> rates{};
+  std::snprintf(rates.data(), rates.size(), "rx %.0f/s, tx %.0f/s", snapshot.rx_fps, snapshot.tx_fps);
+  driver::Diagnostics values{
+      {"link", std::string(link_name_.data()) + (snapshot.link_up ? " (up)" : " (down)")},
+      {"frames", rates.data()},
+      {"ctrl_mode", control_mode_text(arm.status.ctrl_mode)},
+      {"arm_status", arm_status_text(arm.status.arm_status)},
+      {"move_mode", move_mode_text(arm.status.mode_feed)},
+      {"motion", arm.status.motion_status == 0 ? "target reached" : "moving"},
+      {"enabled", std::to_string(enabled) + "/6 joints"},
+      {"firmware",
+       firmware_note_.empty() ? software_version(firmware_text_).value_or(params_.firmware) : firmware_note_},
+  };
+  if (arm.status.angle_limit_bits != 0 || arm.status.comm_error_bits != 0) {
+    std::array<char, 64> bits{};
+    std::snprintf(bits.data(), bits.size(), "angle limit 0x%02X, communication 0x%02X", arm.status.angle_limit_bits,
+                  arm.status.comm_error_bits);
+    values.emplace_back("joint_errors", bits.data());
+  }
+  if (!driver_faults.empty()) values.emplace_back("driver_faults", driver_faults);
+  if (params_.gripper) {
+    std::array<char, 96> gripper{};
+    std::snprintf(gripper.data(), gripper.size(), "%s, %.1f mm, %.2f N·m%s%s",
+                  (arm.gripper.status_bits & 0x40U) != 0 ? "enabled" : "disabled", arm.gripper.stroke_m * 1e3,
+                  arm.gripper.effort_nm, (arm.gripper.status_bits & 0x3FU) != 0 ? ", " : "",
+                  gripper_status_text(arm.gripper.status_bits).c_str());
+    values.emplace_back("gripper", gripper.data());
+  }
+  if (hold_for_ops_.load()) values.emplace_back("streaming", "held: a device_call move drives the arm");
+  return values;
+}
+
+}  // namespace robotd::piper

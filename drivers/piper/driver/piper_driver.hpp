@@ -1,0 +1,130 @@
+// The AgileX PiPER arm behind a CAN link (docs/drivers/piper.md).
+//
+// RT thread: read() drains the link (non-blocking), decodes every frame into ArmState, hands
+// replies to queries over to the ops through a lock-free ring, and reports a lost link (link
+// closed, CAN bus error, no arm feedback for feedback_timeout_ms). write() streams commands
+// (command_streamer.hpp) and reports the faults the arm itself reports (arm_state.hpp), so
+// joint states keep flowing while robotd holds the device in FAULT.
+// Other threads: connect()/recover() own the link while the loop is paused; call() ops send
+// frames on the same link (one send is one system call, safe next to the RT thread's) and read
+// the RT thread's published ArmSnapshot.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/piper_frames.hpp"
+#include "driver/arm_state.hpp"
+#include "driver/command_streamer.hpp"
+#include "driver/piper_params.hpp"
+#include "driver/reply_ring.hpp"
+#include "robotd/driver/driver.hpp"
+#include "robotd/driver/seqlock.hpp"
+#include "robotd/transport/can_transport.hpp"
+
+namespace robotd::piper {
+
+inline constexpr std::int32_t kNotConnectedFault = -1;
+inline constexpr std::int32_t kLinkLostFault = -2;
+inline constexpr std::int32_t kBusErrorFault = -3;
+
+/// What the RT thread publishes after every read() for diagnostics() and the ops.
+struct ArmSnapshot {
+  ArmState arm;
+  bool link_up = false;
+  bool any_owned = false;
+  bool estop = false;
+  std::uint64_t rx_frames = 0;
+  std::uint64_t tx_frames = 0;
+  std::uint64_t tx_dropped = 0;  // the transmit queue was full
+  double rx_fps = 0;             // over the last full second
+  double tx_fps = 0;
+};
+
+class PiperDriver final : public driver::Driver {
+ public:
+  Result<void> configure(const nlohmann::json& params) override;
+  driver::DeviceDescription describe() const override;
+
+  Result<void> connect() override;
+  void disconnect() noexcept override;
+  Result<void> recover() override;
+  Result<void> reset_zero(std::span<const int> joints) override;
+
+  driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
+  driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
+
+  Result<nlohmann::json> call(const std::string& op, const nlohmann::json& args) override;
+  driver::Diagnostics diagnostics() const override;
+
+ private:
+  friend class PiperOps;
+
+  // Link (non-RT, link_mutex_ held).
+  Result<void> connect_locked();
+  Result<void> await_arm_feedback(std::chrono::milliseconds timeout);
+  void detect_firmware();
+  Result<void> clear_arm_errors();
+  /// Receives what is waiting and applies it to arm_ (only while the RT loop does not run).
+  void drain_link_blocking_free(std::int64_t now_ns);
+
+  // RT helpers.
+  driver::IoResult link_lost(driver::FaultInfo& fault, const char* why) noexcept;
+  void fill_feedback(driver::Feedback& out, std::int64_t now_ns) noexcept;
+  void update_rates(std::int64_t now_ns) noexcept;
+  void publish_snapshot() noexcept;
+
+  // Ops side (piper_ops*.cpp) shares these; exchanges run with ops_mutex_ held.
+  transport::CanIo send(const CanMessage& message) noexcept;
+  ArmSnapshot snapshot() const;
+  /// Sends `requests` and returns the first `count` replies with id `reply_id` that arrive
+  /// within reply_timeout_ms (replies left over from an earlier exchange are discarded first).
+  Result<std::vector<CanMessage>> exchange(std::span<const CanMessage> requests, std::uint32_t reply_id,
+                                           std::size_t count);
+  /// Sends a setting and waits for its 0x476 acknowledge (`command`: the ack's byte 0).
+  Result<SetAck> set_and_await_ack(const CanMessage& request, std::uint8_t command);
+
+  PiperParams params_;
+  bool configured_ = false;
+  CodecOptions codec_;  // params_.codec with the MIT layout detected at connect
+  std::string firmware_text_;
+  std::string firmware_note_;
+  std::array<char, 96> link_name_{};  // "stand-in /tmp/piper.sock", for RT messages
+
+  std::unique_ptr<transport::CanTransport> transport_;
+  std::mutex link_mutex_;  // connect / recover / disconnect; never taken by the RT thread
+  std::mutex ops_mutex_;   // one op at a time (the reply ring has one consumer)
+
+  std::atomic<bool> connected_{false};
+  std::atomic<bool> link_lost_{false};
+  std::atomic<bool> hold_for_ops_{false};  // a motion op drives the arm (see CommandStreamer::plan)
+  std::atomic<std::uint64_t> tx_frames_{0};
+  std::atomic<std::uint64_t> tx_dropped_{0};
+  ReplyRing replies_;
+  driver::SeqLock<ArmSnapshot> snapshot_;
+
+  // RT thread (and connect/recover while the loop is paused).
+  ArmState arm_;
+  CommandStreamer streamer_;
+  OutgoingFrames outgoing_;
+  bool estop_ = false;
+  driver::FaultInfo lost_fault_;  // why the link was lost
+  std::uint64_t rx_frames_ = 0;
+  std::int64_t rate_window_start_ns_ = 0;
+  std::uint64_t rate_window_rx_ = 0;
+  std::uint64_t rate_window_tx_ = 0;
+  double rx_fps_ = 0;
+  double tx_fps_ = 0;
+  double gripper_last_m_ = 0;
+  std::int64_t gripper_last_ns_ = 0;
+};
+
+}  // namespace robotd::piper

@@ -1,0 +1,87 @@
+// The PiPER's device_call ops: the vendor API beyond joint streaming (docs/drivers/piper.md has
+// the table vendor function → op). Arguments in SI units and radians; vendor units stay in the
+// codec. Motion ops (end_pose, move_c, mode, gripper, disable) are refused while a session owns
+// joints, and hold joint streaming off until a session takes joints again.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "driver/piper_driver.hpp"
+#include "robotd/driver/json_reader.hpp"
+
+namespace robotd::piper {
+
+std::vector<driver::OpDescription> op_descriptions();
+
+/// An op's arguments: a JsonReader over them and the error that names the op and its usage.
+class OpArguments {
+ public:
+  OpArguments(std::string_view op, const nlohmann::json& args);
+  JsonReader& reader() { return reader_; }
+  /// Reports unknown keys; the error for everything wrong, or nullopt.
+  std::optional<Error> finish();
+  /// "joint": 1 … 6, or "all" when `allow_all` (then kAllJoints).
+  std::optional<std::uint8_t> joint(bool allow_all);
+  /// A pose object {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad} under `reader`.
+  static std::optional<CartesianPose> pose(JsonReader& reader);
+
+ private:
+  std::string op_;
+  std::vector<std::string> errors_;
+  JsonReader reader_;
+};
+
+class PiperOps {
+ public:
+  explicit PiperOps(PiperDriver& driver) : driver_(driver) {}
+  Result<nlohmann::json> call(const std::string& op, const nlohmann::json& args);
+
+ private:
+  // Motion and mode (ops_motion.cpp).
+  Result<nlohmann::json> end_pose(const nlohmann::json& args);
+  Result<nlohmann::json> move_c(const nlohmann::json& args);
+  Result<nlohmann::json> mode(const nlohmann::json& args);
+  Result<nlohmann::json> gripper(const nlohmann::json& args);
+  Result<nlohmann::json> enable(const nlohmann::json& args, bool on);
+  Result<nlohmann::json> master_slave(const nlohmann::json& args);
+  /// Error unless the arm may be driven by an op now; on success streaming is held off.
+  std::optional<Error> take_arm_for(std::string_view op);
+  std::optional<Error> send_all(std::span<const CanMessage> frames);
+
+  // Queries (ops_queries.cpp).
+  Result<nlohmann::json> limits(const nlohmann::json& args);
+  Result<nlohmann::json> acc_limits(const nlohmann::json& args);
+  Result<nlohmann::json> firmware(const nlohmann::json& args);
+  Result<nlohmann::json> end_limits(const nlohmann::json& args);
+  Result<nlohmann::json> crash_protection(const nlohmann::json& args);
+  Result<nlohmann::json> gripper_params(const nlohmann::json& args);
+  Result<nlohmann::json> can_fps(const nlohmann::json& args);
+  Result<nlohmann::json> state(const nlohmann::json& args);
+  Result<nlohmann::json> fk(const nlohmann::json& args);
+  Result<nlohmann::json> master_commands(const nlohmann::json& args);
+  Result<nlohmann::json> query_param(std::uint8_t query, std::uint32_t reply_id);
+
+  // Settings, acknowledged by the arm (ops_settings.cpp).
+  Result<nlohmann::json> set_joint_limits(const nlohmann::json& args);
+  Result<nlohmann::json> set_max_speed(const nlohmann::json& args);
+  Result<nlohmann::json> joint_config(const nlohmann::json& args);
+  Result<nlohmann::json> set_max_acc(const nlohmann::json& args);
+  Result<nlohmann::json> param_config(const nlohmann::json& args);
+  Result<nlohmann::json> set_end_limits(const nlohmann::json& args);
+  Result<nlohmann::json> set_crash_protection(const nlohmann::json& args);
+  Result<nlohmann::json> set_gripper_params(const nlohmann::json& args);
+
+  PiperDriver& driver_;
+};
+
+/// JSON of decoded replies, shared by queries and settings that answer with the new values.
+nlohmann::json to_json(const CartesianPose& pose);
+nlohmann::json to_json(const GripperParams& params);
+nlohmann::json to_json(const EndVelAcc& values);
+
+}  // namespace robotd::piper

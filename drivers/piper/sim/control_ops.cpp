@@ -1,0 +1,248 @@
+// The control channel's ops (README.md in this folder): what tests ask the simulator to report
+// or to do wrong.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "simulator.hpp"
+
+namespace robotd::piper::sim {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::int64_t kMaxDurationMs = 3'600'000;
+constexpr std::int64_t kMaxGarbageFrames = 100'000;
+constexpr const char* kOps =
+    "state, reset_counters, silence, drop_replies, garbage, raise_error, clear_error, disconnect, set_joint";
+
+/// A request that names a field wrongly: the reply says which and what is expected.
+class RequestError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+void expect_fields(const json& request, const std::string& op, std::initializer_list<const char*> fields) {
+  for (const auto& item : request.items()) {
+    const std::string& key = item.key();
+    if (key == "op") continue;
+    if (std::none_of(fields.begin(), fields.end(), [&key](const char* field) { return key == field; })) {
+      std::string expected;
+      for (const char* field : fields) {
+        expected += expected.empty() ? "\"" : ", \"";
+        expected += field;
+        expected += '"';
+      }
+      std::string message = "op \"" + op + "\" does not take \"";
+      message += key;
+      message += expected.empty() ? "\": it takes no fields" : "\"; its fields: ";
+      message += expected;
+      throw RequestError(message);
+    }
+  }
+}
+
+std::int64_t integer(const json& request, const std::string& op, const char* name, std::int64_t min, std::int64_t max) {
+  const std::string range = std::to_string(min) + " … " + std::to_string(max);
+  const auto field = request.find(name);
+  if (field == request.end()) throw RequestError("op \"" + op + "\" needs \"" + name + "\": an integer " + range);
+  if (!field->is_number_integer() || field->get<std::int64_t>() < min || field->get<std::int64_t>() > max) {
+    throw RequestError("op \"" + op + "\": \"" + name + "\" must be an integer " + range + ", not " + field->dump());
+  }
+  return field->get<std::int64_t>();
+}
+
+double number(const json& request, const std::string& op, const char* name) {
+  const auto field = request.find(name);
+  if (field == request.end() || !field->is_number()) {
+    throw RequestError("op \"" + op + "\" needs \"" + name + "\": a number" +
+                       (field == request.end() ? std::string() : ", not " + field->dump()));
+  }
+  return field->get<double>();
+}
+
+bool boolean(const json& request, const std::string& op, const char* name) {
+  const auto field = request.find(name);
+  if (field == request.end() || !field->is_boolean()) {
+    throw RequestError("op \"" + op + "\" needs \"" + name + "\": true or false" +
+                       (field == request.end() ? std::string() : ", not " + field->dump()));
+  }
+  return field->get<bool>();
+}
+
+std::string id_text(std::uint32_t key) {
+  std::array<char, 16> text{};
+  if ((key & 0x80000000U) != 0) {
+    std::snprintf(text.data(), text.size(), "0x%08X", key & 0x1FFFFFFFU);  // extended id
+  } else {
+    std::snprintf(text.data(), text.size(), "0x%03X", key);
+  }
+  return text.data();
+}
+
+json pose_json(const CartesianPose& pose) {
+  return {{"x_m", pose.x_m},       {"y_m", pose.y_m},       {"z_m", pose.z_m},
+          {"rx_rad", pose.rx_rad}, {"ry_rad", pose.ry_rad}, {"rz_rad", pose.rz_rad}};
+}
+
+}  // namespace
+
+json Simulator::control(const json& request) {
+  try {
+    const auto op_field = request.find("op");
+    if (op_field == request.end() || !op_field->is_string()) {
+      throw RequestError(std::string("the request needs \"op\": a string, one of ") + kOps);
+    }
+    const std::string op = op_field->get<std::string>();
+    const std::int64_t now = monotonic_ns();
+    json reply = {{"ok", true}};
+    if (op == "state") {
+      expect_fields(request, op, {});
+      return state();
+    }
+    if (op == "reset_counters") {
+      expect_fields(request, op, {});
+      frames_received_.clear();
+      frames_sent_ = 0;
+    } else if (op == "silence") {
+      expect_fields(request, op, {"ms"});
+      const std::int64_t ms = integer(request, op, "ms", 0, kMaxDurationMs);
+      silent_until_ns_ = now + ms * 1'000'000;
+    } else if (op == "drop_replies") {
+      expect_fields(request, op, {"enabled"});
+      drop_replies_ = boolean(request, op, "enabled");
+    } else if (op == "garbage") {
+      expect_fields(request, op, {"frames"});
+      const std::int64_t frames = integer(request, op, "frames", 1, kMaxGarbageFrames);
+      garbage_pending_ += frames;
+      reply["queued"] = garbage_pending_;
+    } else if (op == "raise_error") {
+      reply = raise_error(request);
+    } else if (op == "clear_error") {
+      expect_fields(request, op, {});
+      arm_.clear_errors();
+    } else if (op == "disconnect") {
+      expect_fields(request, op, {"ms"});
+      const std::int64_t ms = integer(request, op, "ms", 0, kMaxDurationMs);
+      bus_->close();  // every node sees its connection end
+      bus_open_ = false;
+      reopen_bus_at_ns_ = now + ms * 1'000'000;
+    } else if (op == "set_joint") {
+      expect_fields(request, op, {"joint", "position_rad"});
+      const auto joint = static_cast<int>(integer(request, op, "joint", 1, kArmJoints));
+      const double position = number(request, op, "position_rad");
+      if (!arm_.teleport(joint, position)) {
+        const JointSettings& limits = arm_.settings().joints.at(static_cast<std::size_t>(joint - 1));
+        throw RequestError("op \"set_joint\": position_rad " + std::to_string(position) + " is outside joint " +
+                           std::to_string(joint) + "'s limits [" + std::to_string(limits.min_rad) + ", " +
+                           std::to_string(limits.max_rad) + "] rad");
+      }
+    } else {
+      throw RequestError("unknown op \"" + op + "\": expected one of " + kOps);
+    }
+    if (!options_.quiet) spdlog::info("control: {}", request.dump());
+    return reply;
+  } catch (const RequestError& error) {
+    return {{"ok", false}, {"error", error.what()}};
+  } catch (const std::exception& error) {
+    return {{"ok", false}, {"error", std::string("the simulator failed on this request: ") + error.what()}};
+  }
+}
+
+json Simulator::raise_error(const json& request) {
+  const std::string op = "raise_error";
+  expect_fields(request, op, {"arm_status", "joint", "driver_status_bits", "comm_error", "gripper_status_bits"});
+  const bool has_joint = request.contains("joint");
+  const bool joint_fields = request.contains("driver_status_bits") || request.contains("comm_error");
+  if (has_joint != joint_fields) {
+    throw RequestError(
+        "op \"raise_error\": \"joint\" (1 … 6) goes with \"driver_status_bits\" (0 … 255) and/or "
+        "\"comm_error\" (true/false)");
+  }
+  if (!has_joint && !request.contains("arm_status") && !request.contains("gripper_status_bits")) {
+    throw RequestError(
+        "op \"raise_error\" needs one of: {\"arm_status\": 0 … 255}, {\"joint\": 1 … 6, \"driver_status_bits\": "
+        "0 … 255}, {\"joint\": 1 … 6, \"comm_error\": true}, {\"gripper_status_bits\": 0 … 255}");
+  }
+  // Check everything before changing anything.
+  std::optional<std::uint8_t> arm_status;
+  std::optional<std::uint8_t> driver_bits;
+  std::optional<bool> comm_error;
+  std::optional<std::uint8_t> gripper_bits;
+  int joint = 0;
+  if (request.contains("arm_status"))
+    arm_status = static_cast<std::uint8_t>(integer(request, op, "arm_status", 0, 255));
+  if (has_joint) joint = static_cast<int>(integer(request, op, "joint", 1, kArmJoints));
+  if (request.contains("driver_status_bits")) {
+    driver_bits = static_cast<std::uint8_t>(integer(request, op, "driver_status_bits", 0, 255));
+  }
+  if (request.contains("comm_error")) comm_error = boolean(request, op, "comm_error");
+  if (request.contains("gripper_status_bits")) {
+    gripper_bits = static_cast<std::uint8_t>(integer(request, op, "gripper_status_bits", 0, 255));
+  }
+  if (arm_status) arm_.inject_arm_status(*arm_status);
+  if (driver_bits) arm_.inject_driver_bits(joint, *driver_bits);
+  if (comm_error) arm_.inject_comm_error(joint, *comm_error);
+  if (gripper_bits) arm_.inject_gripper_bits(*gripper_bits);
+  return {{"ok", true}, {"arm_status", arm_.arm_status()}};
+}
+
+json Simulator::state() const {
+  json joints = json::array();
+  for (std::size_t i = 0; i < arm_.joints().size(); ++i) {
+    const SimJoint& joint = arm_.joints()[i];
+    const JointSettings& limits = arm_.settings().joints[i];
+    joints.push_back({{"position_rad", joint.position_rad},
+                      {"velocity_rad_s", joint.velocity_rad_s},
+                      {"enabled", joint.enabled},
+                      {"target_rad", joint.target_rad},
+                      {"torque_nm", joint.torque_nm},
+                      {"mit", joint.mit.has_value()},
+                      {"min_rad", limits.min_rad},
+                      {"max_rad", limits.max_rad},
+                      {"max_speed_rad_s", limits.max_speed_rad_s},
+                      {"max_acc_rad_s2", limits.max_acc_rad_s2},
+                      {"driver_status_bits", joint.injected_driver_bits},
+                      {"comm_error", joint.comm_error}});
+  }
+  const SimGripper& gripper = arm_.gripper();
+  json received = json::object();
+  for (const auto& [key, count] : frames_received_) received[id_text(key)] = count;
+  return {{"ok", true},
+          {"joints", joints},
+          {"gripper",
+           {{"stroke_m", gripper.stroke_m},
+            {"target_m", gripper.target_m},
+            {"effort_nm", gripper.effort_nm},
+            {"enabled", gripper.enabled},
+            {"max_stroke_m", arm_.max_gripper_stroke_m()}}},
+          {"end_pose", pose_json(arm_.end_pose())},
+          {"ctrl_mode", static_cast<int>(arm_.ctrl_mode())},
+          {"move_mode", static_cast<int>(arm_.move_mode())},
+          {"mit", arm_.mit()},
+          {"speed_percent", arm_.speed_percent()},
+          {"installation", arm_.installation()},
+          {"teach_status", arm_.teach_status()},
+          {"arm_status", arm_.arm_status()},
+          {"motion_status", arm_.motion_status()},
+          {"angle_limit_bits", arm_.angle_limit_bits()},
+          {"comm_error_bits", arm_.comm_error_bits()},
+          {"estop", arm_.estop()},
+          {"collision_levels", arm_.settings().collision_levels},
+          {"payload", arm_.settings().payload},
+          {"master_slave", arm_.settings().master_slave.linkage},
+          {"frames_received", received},
+          {"frames_sent", frames_sent_},
+          {"bus_open", bus_open_},
+          {"drop_replies", drop_replies_},
+          {"silent", monotonic_ns() < silent_until_ns_},
+          {"garbage_pending", garbage_pending_},
+          {"firmware", controller_.software_version()}};
+}
+
+}  // namespace robotd::piper::sim

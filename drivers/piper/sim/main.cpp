@@ -1,0 +1,107 @@
+// robotd-piper-sim: an AgileX PiPER main controller on the CAN wire protocol, for tests and the
+// no-hardware demo. README.md in this folder describes the options and the control channel.
+//
+//   robotd-piper-sim --standin /tmp/piper.sock --control /tmp/piper.ctl
+//
+// Prints "ready" once the bus and the control socket listen; runs until SIGTERM or SIGINT.
+#include <csignal>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "firmware_info.hpp"
+#include "simulator.hpp"
+
+namespace {
+
+constexpr int kExitUsage = 2;
+
+volatile std::sig_atomic_t stop_requested = 0;
+
+void request_stop(int /*signal*/) { stop_requested = 1; }
+
+int fail(const std::string& message) {
+  std::cerr << "robotd-piper-sim: " << message << "\n";
+  return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using robotd::piper::sim::SimOptions;
+  CLI::App app{"robotd-piper-sim: an AgileX PiPER arm (main controller, six joints, gripper) on the CAN wire protocol"};
+  SimOptions options;
+  std::string standin_path;
+  std::string interface;
+  std::string dh = "offset";
+  std::string initial;
+  auto* standin_option =
+      app.add_option("--standin", standin_path, "listen as the stand-in CAN bus at this unix seqpacket socket path");
+  auto* interface_option = app.add_option("--interface", interface, "join this SocketCAN interface (can0, vcan0)");
+  standin_option->excludes(interface_option);
+  app.add_option("--control", options.control_path, "the control channel's unix stream socket path (tests)");
+  app.add_option("--firmware", options.firmware, "the software version the arm reports on 0x4AF")
+      ->capture_default_str();
+  app.add_option("--dh", dh, "the DH table of the reported end pose: offset (firmware ≥ S-V1.6-3) or plain")
+      ->check(CLI::IsMember({"offset", "plain"}))
+      ->capture_default_str();
+  app.add_option("--feedback-rate-hz", options.feedback_rate_hz,
+                 "rate of the 0x2A1–0x2A8 and 0x251–0x256 feedback; 0x261–0x266 run at a fifth of it")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--initial", initial, "the joints at start, rad: q1,q2,q3,q4,q5,q6 (default all 0)");
+  app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int status = app.exit(error);
+    return status == 0 ? 0 : kExitUsage;
+  }
+
+  if (standin_option->count() == 0 && interface_option->count() == 0) {
+    return fail("say where the bus is: --standin PATH (unix socket stand-in) or --interface NAME (SocketCAN)");
+  }
+  if (standin_option->count() != 0) {
+    options.bus.kind = robotd::transport::CanLinkConfig::Kind::kStandIn;
+    options.bus.path = standin_path;
+  } else {
+    options.bus.kind = robotd::transport::CanLinkConfig::Kind::kSocketCan;
+    options.bus.interface = interface;
+  }
+  options.dh = dh == "plain" ? robotd::piper::DhVariant::kPlain : robotd::piper::DhVariant::kOffset;
+  if (robotd::piper::software_version(robotd::piper::sim::firmware_text(options.firmware)) != options.firmware) {
+    return fail("--firmware '" + options.firmware +
+                "' is not a version the arm could report: 8 characters such as S-V1.8-2");
+  }
+  if (!initial.empty()) {
+    auto joints = robotd::piper::sim::parse_initial_joints(initial);
+    if (!joints) return fail(joints.error().message);
+    options.initial_rad = joints.value();
+  }
+
+  auto logger = spdlog::stderr_logger_st("robotd-piper-sim");
+  spdlog::set_default_logger(logger);
+  spdlog::set_level(options.quiet ? spdlog::level::warn : spdlog::level::info);
+
+  robotd::piper::sim::Simulator simulator(options);
+  if (auto opened = simulator.open(); !opened) return fail(opened.error().message);
+
+  struct sigaction action {};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  spdlog::info("{} firmware {}, feedback {} Hz{}",
+               options.bus.kind == robotd::transport::CanLinkConfig::Kind::kStandIn
+                   ? "stand-in bus " + options.bus.path
+                   : "SocketCAN " + options.bus.interface,
+               options.firmware, options.feedback_rate_hz,
+               options.control_path.empty() ? "" : ", control " + options.control_path);
+  std::cout << "ready" << std::endl;  // the one line on stdout; flushed
+  simulator.run(stop_requested);
+  return 0;
+}

@@ -1,0 +1,426 @@
+// The PiPER driver against robotd-piper-sim over the stand-in CAN bus: real sockets, a real
+// simulator process, and a 1 kHz thread that calls read()/write() the way robotd's loop does.
+#include "driver/piper_driver.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "driver/piper_ops.hpp"
+#include "kinematics/piper_kinematics.hpp"
+#include "piper_sim_process.hpp"
+
+namespace robotd::piper {
+namespace {
+
+using namespace std::chrono_literals;
+using driver::IoResult;
+using driver::JointCommandKind;
+using testing::PiperSimProcess;
+
+/// Calls read() and write() every millisecond like robotd's RT loop, with the command a test sets.
+class DriverLoop {
+ public:
+  explicit DriverLoop(PiperDriver& driver) : driver_(driver) {
+    command_.joint_count = 7;
+    thread_ = std::thread([this] { run(); });
+  }
+  DriverLoop(const DriverLoop&) = delete;
+  DriverLoop& operator=(const DriverLoop&) = delete;
+  ~DriverLoop() {
+    running_ = false;
+    thread_.join();
+  }
+
+  void set_command(const driver::CommandFrame& command) {
+    const std::lock_guard lock(mutex_);
+    command_ = command;
+  }
+  /// Pauses the calls (as robotd does for recover()) while `work` runs.
+  template <class Work>
+  auto paused(Work work) {
+    paused_ = true;
+    while (!idle_) std::this_thread::sleep_for(1ms);
+    auto result = work();
+    paused_ = false;
+    return result;
+  }
+  driver::Feedback feedback() {
+    const std::lock_guard lock(mutex_);
+    return feedback_;
+  }
+  IoResult last_read() { return last_read_.load(); }
+  IoResult last_write() { return last_write_.load(); }
+  std::string fault_text() {
+    const std::lock_guard lock(mutex_);
+    return fault_.text.data();
+  }
+  /// Waits until `done(feedback)` or the timeout.
+  template <class Done>
+  bool wait_for(Done done, std::chrono::milliseconds timeout = 5s) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (done(*this)) return true;
+      std::this_thread::sleep_for(5ms);
+    }
+    return false;
+  }
+
+ private:
+  void run() {
+    auto next = std::chrono::steady_clock::now();
+    while (running_) {
+      next += 1ms;
+      std::this_thread::sleep_until(next);
+      if (paused_) {
+        idle_ = true;
+        continue;
+      }
+      idle_ = false;
+      driver::Feedback feedback;
+      driver::FaultInfo fault;
+      const IoResult read = driver_.read(feedback, fault);
+      driver::CommandFrame command;
+      {
+        const std::lock_guard lock(mutex_);
+        command = command_;
+        if (read == IoResult::kOk) feedback_ = feedback;
+        if (fault.code != 0) fault_ = fault;
+      }
+      last_read_ = read;
+      if (read == IoResult::kDisconnected) continue;
+      command.tick_deadline_ns =
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+              .count();
+      driver::FaultInfo write_fault;
+      last_write_ = driver_.write(command, write_fault);
+      if (write_fault.code != 0) {
+        const std::lock_guard lock(mutex_);
+        fault_ = write_fault;
+      }
+    }
+  }
+
+  PiperDriver& driver_;
+  std::mutex mutex_;
+  driver::CommandFrame command_;
+  driver::Feedback feedback_;
+  driver::FaultInfo fault_;
+  std::atomic<IoResult> last_read_{IoResult::kNoNewData};
+  std::atomic<IoResult> last_write_{IoResult::kOk};
+  std::atomic<bool> paused_{false};
+  std::atomic<bool> idle_{false};
+  std::atomic<bool> running_{true};
+  std::thread thread_;
+};
+
+nlohmann::json driver_params(const std::string& bus_path, const nlohmann::json& extra = nlohmann::json::object()) {
+  nlohmann::json params{{"can", {{"transport", "standin"}, {"path", bus_path}}}, {"feedback_timeout_ms", 100}};
+  params.update(extra);
+  return params;
+}
+
+driver::CommandFrame positions(const std::array<double, 6>& q, bool owned = true) {
+  driver::CommandFrame frame;
+  frame.joint_count = 7;
+  for (std::size_t j = 0; j < 6; ++j)
+    frame.joints[j] = {.kind = JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
+  return frame;
+}
+
+class PiperDriverTest : public ::testing::Test {
+ protected:
+  void SetUp() override { ASSERT_TRUE(driver_.configure(driver_params(sim_.bus_path()))); }
+
+  PiperSimProcess sim_{PiperSimProcess::unique_path("piper-driver")};
+  PiperDriver driver_;
+};
+
+TEST_F(PiperDriverTest, ConnectChecksFeedbackAndReadsTheFirmware) {
+  ASSERT_TRUE(driver_.connect());
+  const driver::Diagnostics diagnostics = driver_.diagnostics();
+  const auto firmware =
+      std::find_if(diagnostics.begin(), diagnostics.end(), [](const auto& kv) { return kv.first == "firmware"; });
+  ASSERT_NE(firmware, diagnostics.end());
+  EXPECT_EQ(firmware->second, "S-V1.8-2");
+  const driver::DeviceDescription description = driver_.describe();
+  ASSERT_EQ(description.joints.size(), 7U);
+  EXPECT_EQ(description.joints[6].name, "gripper");
+  EXPECT_NEAR(description.joints[0].limits.position_max_rad, 2.6179, 1e-9);
+  EXPECT_NEAR(description.joints[2].limits.position_min_rad, -2.967, 1e-9);
+  EXPECT_TRUE(description.has_end_pose);
+  driver_.disconnect();
+}
+
+TEST_F(PiperDriverTest, ConnectSaysWhatIsWrongWhenNothingListens) {
+  PiperDriver lonely;
+  ASSERT_TRUE(lonely.configure(driver_params("/tmp/robotd-piper-nobody-here.sock")));
+  const auto connected = lonely.connect();
+  ASSERT_FALSE(connected);
+  EXPECT_EQ(connected.error().code, ErrorCode::kNotAvailable);
+  EXPECT_NE(connected.error().message.find("no CAN bus at /tmp/robotd-piper-nobody-here.sock"), std::string::npos)
+      << connected.error().message;
+}
+
+TEST_F(PiperDriverTest, ConnectSaysWhenTheBusIsSilent) {
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 3000}})["ok"].get<bool>());
+  std::this_thread::sleep_for(20ms);
+  const auto connected = driver_.connect();
+  ASSERT_FALSE(connected);
+  EXPECT_EQ(connected.error().code, ErrorCode::kNotAvailable);
+  EXPECT_NE(connected.error().message.find("no frames on"), std::string::npos) << connected.error().message;
+  EXPECT_NE(connected.error().message.find("powered on"), std::string::npos) << connected.error().message;
+}
+
+TEST_F(PiperDriverTest, ConfigureRejectsBadParamsWithTheirPath) {
+  PiperDriver driver;
+  const auto configured = driver.configure({{"can", {{"transport", "standin"}, {"path", "/tmp/x.sock"}}},
+                                            {"command_rate_hz", 2000},
+                                            {"joints", {{"joint9", {{"kp_max", 1}}}}},
+                                            {"firmware", "latest"},
+                                            {"sped_percent", 50}});
+  ASSERT_FALSE(configured);
+  const std::string& message = configured.error().message;
+  EXPECT_NE(message.find("command_rate_hz"), std::string::npos) << message;
+  EXPECT_NE(message.find("joint9"), std::string::npos) << message;
+  EXPECT_NE(message.find("firmware"), std::string::npos) << message;
+  EXPECT_NE(message.find("sped_percent"), std::string::npos) << message;
+  const auto missing = driver.configure(nlohmann::json::object());
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("can"), std::string::npos) << missing.error().message;
+}
+
+TEST_F(PiperDriverTest, StreamedPositionsEnableTheArmAndMoveIt) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const std::array<double, 6> target{0.3, 0.4, -0.5, 0.2, -0.3, 0.6};
+  loop.set_command(positions(target));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) {
+    const driver::Feedback feedback = l.feedback();
+    for (std::size_t j = 0; j < 6; ++j) {
+      if (std::fabs(feedback.joints[j].position_rad - target[j]) > 0.002) return false;
+    }
+    return true;
+  })) << "feedback: "
+      << loop.feedback().joints[0].position_rad;
+  const nlohmann::json state = sim_.control({{"op", "state"}});
+  EXPECT_TRUE(state["joints"][0]["enabled"].get<bool>()) << state.dump();
+  EXPECT_EQ(state["move_mode"].get<int>(), 1) << state.dump();  // MOVE J
+  EXPECT_EQ(loop.last_write(), IoResult::kOk);
+  const driver::Feedback feedback = loop.feedback();
+  EXPECT_TRUE(feedback.has_end_pose);
+  const CartesianPose fk = forward_kinematics(target, DhVariant::kOffset);
+  EXPECT_NEAR(feedback.end_pose.position_m[0], fk.x_m, 0.002);
+}
+
+TEST_F(PiperDriverTest, ImpedanceCommandsDriveTheArmInMitMode) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  driver::CommandFrame frame = positions({0, 0, 0, 0, 0, 0});
+  frame.joints[5] = {.kind = JointCommandKind::kImpedance, .owned = true, .position_rad = 0.5, .kp = 10, .kd = 0.8};
+  loop.set_command(frame);
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[5].position_rad - 0.5) < 0.02; }))
+      << loop.feedback().joints[5].position_rad;
+  const nlohmann::json state = sim_.control({{"op", "state"}});
+  EXPECT_TRUE(state["mit"].get<bool>()) << state.dump();
+}
+
+TEST_F(PiperDriverTest, EstopStopsTheArmAndResetResumesIt) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  loop.set_command(positions({0.2, 0.2, -0.2, 0, 0, 0}));
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[0].position_rad - 0.2) < 0.01; }));
+  driver::CommandFrame stopped = positions({0.2, 0.2, -0.2, 0, 0, 0});
+  stopped.estop = true;
+  loop.set_command(stopped);
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop&) { return sim_.control({{"op", "state"}})["estop"].get<bool>(); }));
+  EXPECT_EQ(loop.last_write(), IoResult::kOk) << "robotd's own e-stop is not a fault: " << loop.fault_text();
+
+  loop.set_command(positions({0.3, 0.2, -0.2, 0, 0, 0}));
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[0].position_rad - 0.3) < 0.01; }))
+      << "resumed, re-enabled and moving again";
+  EXPECT_FALSE(sim_.control({{"op", "state"}})["estop"].get<bool>());
+}
+
+TEST_F(PiperDriverTest, ArmFaultIsReportedWithItsTextAndRecoverClearsIt) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  loop.set_command(positions({0, 0, 0, 0, 0, 0}));
+  ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"arm_status", 7}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
+  EXPECT_NE(loop.fault_text().find("collision"), std::string::npos) << loop.fault_text();
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }))
+      << "joint states keep flowing during an arm fault";
+
+  const auto recovered = loop.paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kOk; }));
+}
+
+TEST_F(PiperDriverTest, DriverFaultBitsNameTheJointAndTheProblem) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  loop.set_command(positions({0, 0, 0, 0, 0, 0}));
+  ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"joint", 3}, {"driver_status_bits", 0x04}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
+  EXPECT_NE(loop.fault_text().find("joint 3"), std::string::npos) << loop.fault_text();
+  EXPECT_NE(loop.fault_text().find("over-current"), std::string::npos) << loop.fault_text();
+}
+
+TEST_F(PiperDriverTest, SilentArmIsALostLinkAndRecoverWaitsForItsReturn) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 600}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  EXPECT_NE(loop.fault_text().find("no arm feedback"), std::string::npos) << loop.fault_text();
+  const auto early = loop.paused([&] { return driver_.recover(); });
+  EXPECT_FALSE(early) << "recovered while the arm was still silent";
+  std::this_thread::sleep_for(700ms);
+  const auto later = loop.paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(later) << later.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() != IoResult::kDisconnected; }));
+}
+
+TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  sim_.kill_hard();
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  EXPECT_NE(loop.fault_text().find("CAN link closed"), std::string::npos) << loop.fault_text();
+  const auto while_gone = loop.paused([&] { return driver_.recover(); });
+  ASSERT_FALSE(while_gone);
+  EXPECT_EQ(while_gone.error().code, ErrorCode::kNotAvailable);
+  sim_.restart();
+  const auto back = loop.paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+}
+
+TEST_F(PiperDriverTest, GarbageOnTheBusIsCountedNotFatal) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  ASSERT_TRUE(sim_.control({{"op", "garbage"}, {"frames", 500}})["ok"].get<bool>());
+  std::this_thread::sleep_for(200ms);
+  EXPECT_NE(loop.last_read(), IoResult::kDisconnected);
+  const auto fps = driver_.call("can_fps", nullptr);
+  ASSERT_TRUE(fps) << fps.error().message;
+  EXPECT_GT(fps.value()["unknown_frames"].get<std::uint64_t>(), 0U) << fps.value().dump();
+}
+
+TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const auto limits = driver_.call("limits", nullptr);
+  ASSERT_TRUE(limits) << limits.error().message;
+  ASSERT_EQ(limits.value()["joints"].size(), 6U) << limits.value().dump();
+  EXPECT_NEAR(limits.value()["joints"][0]["max_angle_rad"].get<double>(), 2.618, 0.002) << limits.value().dump();
+  for (const char* op : {"acc_limits", "firmware", "end_limits", "crash_protection", "gripper_params", "state", "fk",
+                         "can_fps", "master_commands"}) {
+    const auto reply = driver_.call(op, nlohmann::json::object());
+    EXPECT_TRUE(reply) << op << ": " << reply.error().message;
+  }
+  const auto firmware = driver_.call("firmware", nullptr);
+  ASSERT_TRUE(firmware);
+  EXPECT_EQ(firmware.value()["software_version"], "S-V1.8-2") << firmware.value().dump();
+  const auto fk = driver_.call("fk", {{"joints_rad", {0, 0, 0, 0, 0, 0}}});
+  ASSERT_TRUE(fk);
+  EXPECT_NEAR(fk.value()["flange"]["x_m"].get<double>(), 0.056128, 1e-5) << fk.value().dump();
+  EXPECT_NEAR(fk.value()["flange"]["z_m"].get<double>(), 0.213266, 1e-5) << fk.value().dump();
+}
+
+TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const auto crash = driver_.call("set_crash_protection", {{"levels", {1, 2, 3, 4, 5, 6}}});
+  ASSERT_TRUE(crash) << crash.error().message;
+  const auto levels = driver_.call("crash_protection", nullptr);
+  ASSERT_TRUE(levels);
+  EXPECT_EQ(levels.value()["levels"], nlohmann::json({1, 2, 3, 4, 5, 6}));
+  const auto limits = driver_.call("set_joint_limits", {{"joint", 4}, {"max_angle_rad", 1.5}, {"min_angle_rad", -1.5}});
+  ASSERT_TRUE(limits) << limits.error().message;
+  const auto read_back = driver_.call("limits", nullptr);
+  ASSERT_TRUE(read_back);
+  EXPECT_NEAR(read_back.value()["joints"][3]["max_angle_rad"].get<double>(), 1.5, 0.002) << read_back.value().dump();
+  for (const auto& [op, args] : std::vector<std::pair<std::string, nlohmann::json>>{
+           {"set_max_speed", {{"joint", "all"}, {"max_speed_rad_s", 2.0}}},
+           {"joint_config", {{"joint", "all"}, {"clear_error", true}}},
+           {"set_max_acc", {{"joint", 2}, {"max_acc_rad_s2", 3.0}}},
+           {"param_config", {{"payload", "half"}}},
+           {"set_end_limits", {{"max_linear_velocity_m_s", 0.5}}},
+           {"set_gripper_params", {{"max_range_mm", 100}}}}) {
+    const auto reply = driver_.call(op, args);
+    EXPECT_TRUE(reply) << op << ": " << reply.error().message;
+  }
+  const auto gripper = driver_.call("gripper_params", nullptr);
+  ASSERT_TRUE(gripper);
+  EXPECT_EQ(gripper.value()["max_range_mm"], 100);
+  ASSERT_TRUE(driver_.reset_zero(std::array{4}));
+}
+
+TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const auto bad_joint = driver_.call("set_max_acc", {{"joint", 9}, {"max_acc_rad_s2", 1}});
+  ASSERT_FALSE(bad_joint);
+  EXPECT_EQ(bad_joint.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(bad_joint.error().message.find("args.joint"), std::string::npos) << bad_joint.error().message;
+  EXPECT_NE(bad_joint.error().message.find("expects"), std::string::npos) << bad_joint.error().message;
+  const auto bad_levels = driver_.call("set_crash_protection", {{"levels", {1, 2}}});
+  ASSERT_FALSE(bad_levels);
+  EXPECT_NE(bad_levels.error().message.find("expected 6 levels, got 2"), std::string::npos);
+  const auto typo = driver_.call("end_pose", {{"x", 0.1}});
+  ASSERT_FALSE(typo);
+  EXPECT_NE(typo.error().message.find("x_m"), std::string::npos) << typo.error().message;
+  const auto unknown = driver_.call("fly", nullptr);
+  ASSERT_FALSE(unknown);
+  EXPECT_NE(unknown.error().message.find("end_pose"), std::string::npos) << "lists the ops";
+}
+
+TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const CartesianPose target = forward_kinematics({0.2, 0.6, -0.8, 0.1, 0.3, 0.2}, DhVariant::kOffset);
+  nlohmann::json args = to_json(target);
+  ASSERT_TRUE(driver_.call("enable", nullptr));
+  const auto moved = driver_.call("end_pose", args);
+  ASSERT_TRUE(moved) << moved.error().message;
+  EXPECT_TRUE(loop.wait_for(
+      [&](DriverLoop& l) {
+        const driver::Feedback f = l.feedback();
+        return std::fabs(f.end_pose.position_m[0] - target.x_m) < 0.001 &&
+               std::fabs(f.end_pose.position_m[2] - target.z_m) < 0.001;
+      },
+      10s))
+      << loop.feedback().end_pose.position_m[0];
+
+  loop.set_command(positions({0.2, 0.6, -0.8, 0.1, 0.3, 0.2}));
+  std::this_thread::sleep_for(50ms);  // a few ticks: the driver has seen the session's joints
+  const auto refused = driver_.call("end_pose", args);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kRefused);
+  EXPECT_NE(refused.error().message.find("session"), std::string::npos) << refused.error().message;
+}
+
+TEST_F(PiperDriverTest, GripperFollowsItsJointAndItsOp) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  driver::CommandFrame frame = positions({0, 0, 0, 0, 0, 0});
+  frame.joints[6] = {.kind = JointCommandKind::kPosition, .owned = true, .position_rad = 0.03};
+  loop.set_command(frame);
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) {
+    return std::fabs(l.feedback().joints[6].position_rad - 0.03) < 0.001;
+  })) << loop.feedback().joints[6].position_rad;
+  loop.set_command(positions({0, 0, 0, 0, 0, 0}, /*owned=*/false));
+  std::this_thread::sleep_for(20ms);
+  const auto opened = driver_.call("gripper", {{"stroke_m", 0.05}, {"effort_nm", 1.5}});
+  ASSERT_TRUE(opened) << opened.error().message;
+  EXPECT_TRUE(
+      loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[6].position_rad - 0.05) < 0.001; }));
+}
+
+}  // namespace
+}  // namespace robotd::piper

@@ -1,0 +1,212 @@
+// The PiPER driver end to end: robotd loads the piper plugin, which talks CAN to
+// robotd-piper-sim over the stand-in bus; a client drives it through DDS.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "piper_sim_process.hpp"
+#include "robotd_fixture.hpp"
+
+namespace robotd::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+class PiperTest : public RobotdTest {
+ protected:
+  /// robotd with the PiPER ("piper") and, with `with_sim_arm`, the simulated arm ("arm").
+  void start(bool with_sim_arm, const nlohmann::json& piper_params = nlohmann::json::object()) {
+    nlohmann::json params{{"can", {{"transport", "standin"}, {"path", sim_.bus_path()}}}};
+    params.update(piper_params);
+    nlohmann::json piper{{"name", "piper"},
+                         {"driver", "piper"},
+                         {"rate_hz", 1000},
+                         {"realtime", "prefer"},
+                         {"safe_behavior", "KEEP"},
+                         {"shutdown_behavior", "KEEP"},
+                         {"reconnect_interval_ms", 200},
+                         {"params", params}};
+    nlohmann::json config = sim_arm_config(domain_.id());
+    if (with_sim_arm) {
+      config["devices"].push_back(piper);
+    } else {
+      config["devices"] = nlohmann::json::array({piper});
+    }
+    start_robotd(config);
+  }
+
+  Session acquire(ControlMode mode = ControlMode::kPosition, std::vector<std::int32_t> motors = {}) {
+    SessionRequest request;
+    request.device = "piper";
+    request.motor_ids = std::move(motors);
+    request.mode = mode;
+    request.on_timeout = Behavior::kKeep;
+    request.timeout = 10s;
+    auto session = client().request_control(request);
+    EXPECT_TRUE(session) << session.error().message;
+    return std::move(session.value());
+  }
+
+  nlohmann::json call(const std::string& op, const nlohmann::json& args = nlohmann::json::object()) {
+    auto reply = client().device_call("piper", op, args.dump());
+    EXPECT_TRUE(reply) << op << ": " << reply.error().message;
+    return reply ? nlohmann::json::parse(reply.value()) : nlohmann::json();
+  }
+
+  PiperSimProcess sim_{PiperSimProcess::unique_path("piper-e2e")};
+};
+
+TEST_F(PiperTest, SessionMovesTheArmAndVendorOpsAnswer) {
+  start(/*with_sim_arm=*/false);
+  Session session = acquire();
+  ASSERT_EQ(session.motor_ids().size(), 7U) << "six joints and the gripper";
+  const std::vector<float> target{0.3F, 0.5F, -0.4F, 0.2F, -0.2F, 0.4F, 0.03F};
+  EXPECT_TRUE(wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.send_positions(target);
+        for (std::size_t j = 0; j < target.size(); ++j) {
+          if (std::fabs(s.position[j] - target[j]) > 0.01) return false;
+        }
+        return true;
+      },
+      10s, "piper"))
+      << "the PiPER did not reach the target";
+  const JointState state = joint_state("piper");
+  EXPECT_EQ(state.name[6], "gripper");
+
+  const nlohmann::json firmware = call("firmware");
+  EXPECT_EQ(firmware["software_version"], "S-V1.8-2") << firmware.dump();
+  const nlohmann::json limits = call("limits");
+  EXPECT_EQ(limits["joints"].size(), 6U) << limits.dump();
+  const nlohmann::json arm = call("state");
+  EXPECT_EQ(arm["ctrl_mode"], "can command") << arm.dump();
+  const auto refused = client().device_call("piper", "end_pose", call("fk")["flange"].dump());
+  ASSERT_FALSE(refused) << "a move op while a session streams";
+  EXPECT_NE(refused.error().message.find("session"), std::string::npos) << refused.error().message;
+
+  ASSERT_TRUE(session.release(Behavior::kKeep));
+  const DeviceStatus status = device_status("piper");
+  EXPECT_EQ(status.state, DeviceState::kRunning) << status.fault_text;
+  EXPECT_EQ(status.loop.overruns, 0U);
+}
+
+TEST_F(PiperTest, LostLinkIsAFaultOthersKeepRunningAndTheArmDoesNotJumpOnReconnect) {
+  start(/*with_sim_arm=*/true);
+  Session session = acquire(ControlMode::kPosition, {0});
+  // A far target: robotd's limiter ramps towards it, so the link drops mid-motion.
+  ASSERT_TRUE(session.send_positions({2.0F}));
+  ASSERT_TRUE(wait_for_joints([](const JointState& s) { return s.position[0] > 0.3; }, 5s, "piper"));
+  ASSERT_TRUE(sim_.control({{"op", "disconnect"}, {"ms", 1000}})["ok"].get<bool>());
+  DeviceStatus status;
+  for (int i = 0; i < 50 && status.state != DeviceState::kFault; ++i) status = device_status("piper");
+  ASSERT_EQ(status.state, DeviceState::kFault);
+  EXPECT_NE(status.fault_text.find("CAN link closed"), std::string::npos) << status.fault_text;
+
+  // The other device is served throughout.
+  const std::uint64_t arm_before = device_status("arm").joint_states_published;
+  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(device_status("arm").state, DeviceState::kRunning);
+  EXPECT_GT(device_status("arm").joint_states_published, arm_before + 100);
+
+  bool back = false;
+  for (int i = 0; i < 100 && !back; ++i) {
+    back = device_status("piper").state == DeviceState::kRunning;
+    if (!back) std::this_thread::sleep_for(50ms);
+  }
+  ASSERT_TRUE(back) << "robotd did not reconnect: " << robotd_->log();
+  const double at_reconnect = joint_state("piper").position[0];
+  std::this_thread::sleep_for(500ms);
+  const double later = joint_state("piper").position[0];
+  EXPECT_NEAR(later, at_reconnect, 0.01) << "the arm moved after the reconnect";
+  EXPECT_LT(later, 1.9);
+}
+
+TEST_F(PiperTest, KilledSimulatorIsReportedAndARestartedOneIsReconnected) {
+  start(/*with_sim_arm=*/true);
+  sim_.kill_hard();
+  DeviceStatus status;
+  for (int i = 0; i < 50 && status.state != DeviceState::kFault; ++i) status = device_status("piper");
+  ASSERT_EQ(status.state, DeviceState::kFault);
+  EXPECT_NE(status.fault_text.find("CAN link closed"), std::string::npos) << status.fault_text;
+  EXPECT_EQ(device_status("arm").state, DeviceState::kRunning);
+  std::this_thread::sleep_for(500ms);
+  EXPECT_EQ(device_status("piper").state, DeviceState::kFault) << "reconnected to nothing";
+  sim_.restart();
+  bool back = false;
+  for (int i = 0; i < 100 && !back; ++i) {
+    back = device_status("piper").state == DeviceState::kRunning;
+    if (!back) std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_TRUE(back) << robotd_->log();
+}
+
+TEST_F(PiperTest, ArmCollisionIsAFaultWithTheArmsWords) {
+  start(/*with_sim_arm=*/false);
+  ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"arm_status", 7}})["ok"].get<bool>());
+  DeviceStatus status;
+  for (int i = 0; i < 50 && status.state != DeviceState::kFault; ++i) status = device_status("piper");
+  ASSERT_EQ(status.state, DeviceState::kFault);
+  EXPECT_NE(status.fault_text.find("collision"), std::string::npos) << status.fault_text;
+  ASSERT_TRUE(client().device_call("piper", "recover"));
+  EXPECT_EQ(device_status("piper").state, DeviceState::kRunning);
+}
+
+// 1 kHz MIXED (MIT) commands from a client for 10 s: how many frames the bus carries, and the
+// loop keeps its period.
+TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {
+  start(/*with_sim_arm=*/false);
+  Session session = acquire(ControlMode::kMixed, {0, 1, 2, 3, 4, 5});
+  ASSERT_TRUE(sim_.control({{"op", "reset_counters"}})["ok"].get<bool>());
+  const std::uint64_t overruns_before = device_status("piper").loop.overruns;
+  const auto start_time = std::chrono::steady_clock::now();
+  auto next = start_time;
+  std::uint64_t sent = 0;
+  Command command;
+  command.kp.assign(6, 10.0F);
+  command.kd.assign(6, 0.8F);
+  command.torques.assign(6, 0.0F);
+  while (std::chrono::steady_clock::now() - start_time < 10s) {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    const auto wave = static_cast<float>(0.3 * std::sin(2 * M_PI * 0.5 * t));
+    command.positions = {wave, 0.5F + wave, -0.5F - wave, wave, wave, wave};
+    if (session.command(command)) ++sent;
+    next += 1ms;
+    std::this_thread::sleep_until(next);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  const nlohmann::json state = sim_.control({{"op", "state"}});
+  const nlohmann::json fps = call("can_fps");
+  const DeviceStatus status = device_status("piper");
+
+  std::uint64_t mit_frames = 0;
+  for (int id = 0x15A; id <= 0x15F; ++id) {
+    char key[8];
+    std::snprintf(key, sizeof(key), "0x%03X", id);
+    if (state["frames_received"].contains(key)) mit_frames += state["frames_received"][key].get<std::uint64_t>();
+  }
+  std::uint64_t host_frames = 0;
+  for (const auto& [id, count] : state["frames_received"].items()) host_frames += count.get<std::uint64_t>();
+  const double mit_per_s = static_cast<double>(mit_frames) / seconds;
+  const double host_per_s = static_cast<double>(host_frames) / seconds;
+  std::cout << "client commands sent: " << sent << " (" << static_cast<double>(sent) / seconds << "/s)\n"
+            << "bus, host -> arm: " << host_per_s << " frames/s (MIT " << mit_per_s << "/s)\n"
+            << "bus, arm -> host: " << fps["rx_fps"].get<double>() << " frames/s\n"
+            << "loop overruns: " << status.loop.overruns - overruns_before << ", wake p99 "
+            << status.loop.wake_latency_p99_us << " us\n";
+  RecordProperty("host_frames_per_s", std::to_string(host_per_s));
+  RecordProperty("arm_frames_per_s", std::to_string(fps["rx_fps"].get<double>()));
+
+  EXPECT_GT(sent, 9000U);
+  EXPECT_NEAR(mit_per_s, 6 * 200.0, 6 * 200.0 * 0.1) << "six MIT frames per 200 Hz command group";
+  EXPECT_LT(host_per_s, 1300.0) << "ModeCtrl and the enable come on top, but rarely";
+  EXPECT_NEAR(fps["rx_fps"].get<double>(), 3040.0, 3040.0 * 0.25) << fps.dump();
+  EXPECT_EQ(status.loop.overruns - overruns_before, 0U);
+  EXPECT_TRUE(state["mit"].get<bool>()) << state.dump();
+  EXPECT_EQ(status.state, DeviceState::kRunning) << status.fault_text;
+}
+
+}  // namespace
+}  // namespace robotd::testing
