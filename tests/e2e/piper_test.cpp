@@ -18,7 +18,8 @@ using namespace std::chrono_literals;
 class PiperTest : public RobotdTest {
  protected:
   /// robotd with the PiPER ("piper") and, with `with_sim_arm`, the simulated arm ("arm").
-  void start(bool with_sim_arm, const nlohmann::json& piper_params = nlohmann::json::object()) {
+  void start(bool with_sim_arm, const nlohmann::json& piper_params = nlohmann::json::object(),
+             std::vector<std::string> environment = {}) {
     nlohmann::json params{{"can", {{"transport", "standin"}, {"path", sim_.bus_path()}}}};
     params.update(piper_params);
     nlohmann::json piper{{"name", "piper"},
@@ -35,7 +36,7 @@ class PiperTest : public RobotdTest {
     } else {
       config["devices"] = nlohmann::json::array({piper});
     }
-    start_robotd(config);
+    start_robotd(config, std::move(environment));
   }
 
   Session acquire(ControlMode mode = ControlMode::kPosition, std::vector<std::int32_t> motors = {}) {
@@ -60,7 +61,7 @@ class PiperTest : public RobotdTest {
 };
 
 TEST_F(PiperTest, SessionMovesTheArmAndVendorOpsAnswer) {
-  start(/*with_sim_arm=*/false);
+  start(/*with_sim_arm=*/false, nlohmann::json::object(), {std::string("LD_PRELOAD=") + ALLOC_COUNTER_LIBRARY});
   Session session = acquire();
   ASSERT_EQ(session.motor_ids().size(), 7U) << "six joints and the gripper";
   const std::vector<float> target{0.3F, 0.5F, -0.4F, 0.2F, -0.2F, 0.4F, 0.03F};
@@ -91,6 +92,7 @@ TEST_F(PiperTest, SessionMovesTheArmAndVendorOpsAnswer) {
   const DeviceStatus status = device_status("piper");
   EXPECT_EQ(status.state, DeviceState::kRunning) << status.fault_text;
   EXPECT_EQ(status.loop.overruns, 0U);
+  EXPECT_EQ(status.loop.rt_heap_allocations, 0) << "streaming JointCtrl and the ops allocated on the RT thread";
 }
 
 TEST_F(PiperTest, LostLinkIsAFaultOthersKeepRunningAndTheArmDoesNotJumpOnReconnect) {
@@ -155,9 +157,9 @@ TEST_F(PiperTest, ArmCollisionIsAFaultWithTheArmsWords) {
 }
 
 // 1 kHz MIXED (MIT) commands from a client for 10 s: how many frames the bus carries, and the
-// loop keeps its period.
+// loop keeps its period without a heap allocation (the RT rule, with the counter preloaded).
 TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {
-  start(/*with_sim_arm=*/false);
+  start(/*with_sim_arm=*/false, nlohmann::json::object(), {std::string("LD_PRELOAD=") + ALLOC_COUNTER_LIBRARY});
   Session session = acquire(ControlMode::kMixed, {0, 1, 2, 3, 4, 5});
   ASSERT_TRUE(sim_.control({{"op", "reset_counters"}})["ok"].get<bool>());
   const std::uint64_t overruns_before = device_status("piper").loop.overruns;
@@ -195,7 +197,8 @@ TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {
             << "bus, host -> arm: " << host_per_s << " frames/s (MIT " << mit_per_s << "/s)\n"
             << "bus, arm -> host: " << fps["rx_fps"].get<double>() << " frames/s\n"
             << "loop overruns: " << status.loop.overruns - overruns_before << ", wake p99 "
-            << status.loop.wake_latency_p99_us << " us\n";
+            << status.loop.wake_latency_p99_us << " us, RT heap allocations " << status.loop.rt_heap_allocations
+            << " over " << status.loop.ticks << " ticks\n";
   RecordProperty("host_frames_per_s", std::to_string(host_per_s));
   RecordProperty("arm_frames_per_s", std::to_string(fps["rx_fps"].get<double>()));
 
@@ -204,6 +207,8 @@ TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {
   EXPECT_LT(host_per_s, 1300.0) << "ModeCtrl and the enable come on top, but rarely";
   EXPECT_NEAR(fps["rx_fps"].get<double>(), 3040.0, 3040.0 * 0.25) << fps.dump();
   EXPECT_EQ(status.loop.overruns - overruns_before, 0U);
+  ASSERT_GE(status.loop.rt_heap_allocations, 0) << "the allocation counter was not loaded into robotd";
+  EXPECT_EQ(status.loop.rt_heap_allocations, 0) << "the PiPER's RT loop (driver read/write included) allocated";
   EXPECT_TRUE(state["mit"].get<bool>()) << state.dump();
   EXPECT_EQ(status.state, DeviceState::kRunning) << status.fault_text;
 }

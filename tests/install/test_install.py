@@ -45,6 +45,8 @@ class InstallTest(unittest.TestCase):
             "bin/robotd",
             "bin/robotctl",
             f"{ARGS.libdir}/robotd/drivers/librobotd_driver_sim.so",
+            f"{ARGS.libdir}/robotd/drivers/librobotd_driver_piper.so",
+            "bin/robotd-piper-sim",
             f"{ARGS.libdir}/librobotd_client.so",
             f"{ARGS.libdir}/cmake/robotd_client/robotd_clientConfig.cmake",
             "include/robotd/client.hpp",

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <initializer_list>
+#include <linux/can/error.h>
 #include <stdexcept>
 #include <string>
 
@@ -19,7 +20,8 @@ using nlohmann::json;
 constexpr std::int64_t kMaxDurationMs = 3'600'000;
 constexpr std::int64_t kMaxGarbageFrames = 100'000;
 constexpr const char* kOps =
-    "state, reset_counters, silence, drop_replies, garbage, raise_error, clear_error, disconnect, set_joint";
+    "state, reset_counters, silence, drop_replies, garbage, bus_error, raise_error, clear_error, disconnect, "
+    "set_joint";
 
 /// A request that names a field wrongly: the reply says which and what is expected.
 class RequestError : public std::runtime_error {
@@ -121,6 +123,14 @@ json Simulator::control(const json& request) {
       const std::int64_t frames = integer(request, op, "frames", 1, kMaxGarbageFrames);
       garbage_pending_ += frames;
       reply["queued"] = garbage_pending_;
+    } else if (op == "bus_error") {
+      // What a CAN controller reports to SocketCAN readers: an error frame, here bus-off.
+      expect_fields(request, op, {});
+      CanMessage error_frame;
+      error_frame.error_frame = true;
+      error_frame.id = CAN_ERR_BUSOFF;
+      error_frame.length = CAN_ERR_DLC;
+      send(error_frame);
     } else if (op == "raise_error") {
       reply = raise_error(request);
     } else if (op == "clear_error") {

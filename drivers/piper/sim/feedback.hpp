@@ -10,9 +10,6 @@
 
 namespace robotd::piper::sim {
 
-inline constexpr int kHighRateFrames = 14;
-inline constexpr int kLowRateFrames = kArmJoints;
-
 void append_high_rate_feedback(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out);
 void append_low_rate_feedback(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out);
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "robotd/transport/can_bus.hpp"
+#include "robotd/transport/can_interface_check.hpp"
 
 namespace robotd::transport {
 namespace {
@@ -203,6 +204,24 @@ TEST(CanLinkConfig, ReadsEitherTransportAndNamesBadKeys) {
   ASSERT_EQ(errors.size(), 2U);
   EXPECT_NE(errors[0].find("can.transport: expected one of"), std::string::npos) << errors[0];
   EXPECT_NE(errors[1].find("can.interfaec: unknown key"), std::string::npos) << errors[1];
+}
+
+// The judge_flag checks on interfaces every Linux machine has (no CAN hardware needed).
+TEST(CanInterfaceCheck, SaysWhatIsWrongWithTheInterface) {
+  const auto missing = check_can_interface("robotdcan9", 1'000'000);
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().code, ErrorCode::kNotAvailable);
+  EXPECT_NE(missing.error().message.find("CAN interface robotdcan9 does not exist"), std::string::npos)
+      << missing.error().message;
+
+  const auto loopback = check_can_interface("lo", 1'000'000);
+  ASSERT_FALSE(loopback);
+  EXPECT_EQ(loopback.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(loopback.error().message.find("lo is not a CAN interface"), std::string::npos) << loopback.error().message;
+
+  const auto injected = check_can_interface("can0; reboot", 1'000'000);
+  ASSERT_FALSE(injected);
+  EXPECT_NE(injected.error().message.find("is not an interface name"), std::string::npos) << injected.error().message;
 }
 
 }  // namespace

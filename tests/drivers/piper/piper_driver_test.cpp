@@ -5,6 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <thread>
 
@@ -194,6 +196,25 @@ TEST_F(PiperDriverTest, ConfigureRejectsBadParamsWithTheirPath) {
   EXPECT_NE(missing.error().message.find("can"), std::string::npos) << missing.error().message;
 }
 
+// The shipped configs' PiPER params are valid (robotd --check-config cannot see driver params).
+TEST(PiperConfigs, ShippedExamplesAndTheDefaultConfigParse) {
+  for (const char* file : {"config/examples/piper.json", "config/examples/piper-sim.json", "config/robotd.json"}) {
+    std::ifstream in(std::string(ROBOTD_SOURCE_DIR) + "/" + file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<std::string> errors;
+    const auto config = parse_json_with_comments(text, file, errors);
+    ASSERT_TRUE(config) << join_errors(errors);
+    int piper_devices = 0;
+    for (const auto& device : config->at("devices")) {
+      if (device.at("driver") != "piper") continue;
+      ++piper_devices;
+      const auto params = parse_piper_params(device.at("params"));
+      EXPECT_TRUE(params) << file << ": " << params.error().message;
+    }
+    EXPECT_EQ(piper_devices, 1) << file;
+  }
+}
+
 TEST_F(PiperDriverTest, StreamedPositionsEnableTheArmAndMoveIt) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_);
@@ -274,12 +295,14 @@ TEST_F(PiperDriverTest, DriverFaultBitsNameTheJointAndTheProblem) {
 TEST_F(PiperDriverTest, SilentArmIsALostLinkAndRecoverWaitsForItsReturn) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_);
-  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 600}})["ok"].get<bool>());
+  const auto silent_until = std::chrono::steady_clock::now() + 2s;
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 2000}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
   EXPECT_NE(loop.fault_text().find("no arm feedback"), std::string::npos) << loop.fault_text();
-  const auto early = loop.paused([&] { return driver_.recover(); });
-  EXPECT_FALSE(early) << "recovered while the arm was still silent";
-  std::this_thread::sleep_for(700ms);
+  const auto early = loop.paused([&] { return driver_.recover(); });  // waits up to connect_timeout_ms (500)
+  ASSERT_FALSE(early) << "recovered while the arm was still silent";
+  EXPECT_NE(early.error().message.find("no frames on"), std::string::npos) << early.error().message;
+  std::this_thread::sleep_until(silent_until + 100ms);
   const auto later = loop.paused([&] { return driver_.recover(); });
   ASSERT_TRUE(later) << later.error().message;
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() != IoResult::kDisconnected; }));
@@ -298,6 +321,17 @@ TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
   const auto back = loop.paused([&] { return driver_.recover(); });
   ASSERT_TRUE(back) << back.error().message;
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+}
+
+TEST_F(PiperDriverTest, CanBusErrorIsAFaultThatNamesTheError) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  ASSERT_TRUE(sim_.control({{"op", "bus_error"}})["ok"].get<bool>());
+  // One kFault read: robotd's loop latches it (the test loop keeps its text).
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.fault_text().find("CAN bus error") != std::string::npos; }))
+      << loop.fault_text();
+  EXPECT_NE(loop.fault_text().find("CAN bus error on stand-in"), std::string::npos) << loop.fault_text();
+  EXPECT_NE(loop.fault_text().find("bus off"), std::string::npos) << loop.fault_text();
 }
 
 TEST_F(PiperDriverTest, GarbageOnTheBusIsCountedNotFatal) {
