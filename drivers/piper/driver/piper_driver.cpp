@@ -85,6 +85,16 @@ Result<void> PiperDriver::connect() {
 }
 
 Result<void> PiperDriver::connect_locked() {
+  auto connected = open_and_check_link();
+  if (!connected) {
+    // What read() reports until a connect succeeds; the loop is not running now.
+    const std::string text = "not connected: " + connected.error().message;
+    not_connected_fault_.set(kNotConnectedFault, text.c_str());
+  }
+  return connected;
+}
+
+Result<void> PiperDriver::open_and_check_link() {
   connected_.store(false);
   transport_->close();
   if (params_.can.kind == transport::CanLinkConfig::Kind::kSocketCan && params_.check_interface) {
@@ -245,7 +255,7 @@ driver::IoResult PiperDriver::link_lost(driver::FaultInfo& fault, const char* wh
 
 driver::IoResult PiperDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
   if (!connected_.load(std::memory_order_acquire)) {
-    fault.set(kNotConnectedFault, "not connected (connect() or recover() first)");
+    fault = not_connected_fault_;
     return driver::IoResult::kDisconnected;
   }
   if (link_lost_.load(std::memory_order_relaxed)) return link_lost(fault, "");
@@ -313,7 +323,7 @@ void PiperDriver::fill_feedback(driver::Feedback& out, std::int64_t now_ns) noex
 
 driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept {
   if (!connected_.load(std::memory_order_acquire)) {
-    fault.set(kNotConnectedFault, "not connected (connect() or recover() first)");
+    fault = not_connected_fault_;
     return driver::IoResult::kDisconnected;
   }
   estop_ = command.estop;

@@ -70,6 +70,7 @@ class PiperDriver final : public driver::Driver {
 
   // Link (non-RT, link_mutex_ held).
   Result<void> connect_locked();
+  Result<void> open_and_check_link();
   Result<void> await_arm_feedback(std::chrono::milliseconds timeout);
   void detect_firmware();
   Result<void> clear_arm_errors();
@@ -117,6 +118,12 @@ class PiperDriver final : public driver::Driver {
   OutgoingFrames outgoing_;
   bool estop_ = false;
   driver::FaultInfo lost_fault_;  // why the link was lost
+  // Why the last connect failed (set while the loop is paused or not yet running).
+  driver::FaultInfo not_connected_fault_ = [] {
+    driver::FaultInfo fault;
+    fault.set(kNotConnectedFault, "not connected (connect() or recover() first)");
+    return fault;
+  }();
   std::uint64_t rx_frames_ = 0;
   std::int64_t rate_window_start_ns_ = 0;
   std::uint64_t rate_window_rx_ = 0;
