@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "robotd/transport/can_bus.hpp"
+#include "robotd/transport/unix_socket.hpp"
 #include "seqpacket_frames.hpp"
 #include "socketcan_transport.hpp"
 
@@ -13,23 +14,9 @@ namespace robotd::transport {
 
 Result<void> StandInCanBus::open() {
   close();
-  sockaddr_un address{};
-  address.sun_family = AF_UNIX;
-  if (path_.empty() || path_.size() >= sizeof(address.sun_path)) {
-    return make_error(ErrorCode::kInvalidArgument, "stand-in CAN bus path '" + path_ + "' is empty or too long");
-  }
-  path_.copy(address.sun_path, sizeof(address.sun_path) - 1);
-  const int sock = socket(AF_UNIX, SOCK_SEQPACKET | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (sock < 0) return make_error(ErrorCode::kTransport, "cannot create a unix socket");
-  unlink(path_.c_str());
-  if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0 ||  // NOLINT
-      listen(sock, 8) != 0) {
-    const int error = errno;
-    ::close(sock);
-    return make_error(ErrorCode::kNotAvailable,
-                      "cannot listen at " + path_ + " (" + std::generic_category().message(error) + ")");
-  }
-  listener_ = sock;
+  auto listener = listen_unix_socket(path_, SOCK_SEQPACKET, 8);
+  if (!listener) return listener.error();
+  listener_ = listener.value();
   return {};
 }
 

@@ -7,6 +7,8 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "robotd/transport/unix_socket.hpp"
+
 namespace robotd::piper::sim {
 namespace {
 
@@ -41,24 +43,12 @@ bool socket_in_use(const std::string& path) {
 
 Result<void> ControlServer::open() {
   close();
-  sockaddr_un address{};
-  if (!fill_address(path_, address)) {
-    return make_error(ErrorCode::kInvalidArgument, "control socket path '" + path_ + "' is empty or too long");
-  }
   if (socket_in_use(path_)) {
     return make_error(ErrorCode::kNotAvailable, "control socket " + path_ + " is in use by another process");
   }
-  const int sock = socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (sock < 0) return make_error(ErrorCode::kTransport, "cannot create a unix socket");
-  unlink(path_.c_str());  // a stale file left by a killed simulator
-  if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0 ||  // NOLINT
-      listen(sock, kMaxClients) != 0) {
-    const int error = errno;
-    ::close(sock);
-    return make_error(ErrorCode::kNotAvailable,
-                      "cannot listen at " + path_ + " (" + std::generic_category().message(error) + ")");
-  }
-  listener_ = sock;
+  auto listener = transport::listen_unix_socket(path_, SOCK_STREAM, kMaxClients);
+  if (!listener) return listener.error();
+  listener_ = listener.value();
   return {};
 }
 
