@@ -53,6 +53,14 @@ class PiperTest : public RobotdTest {
     return std::move(session.value());
   }
 
+  /// The device's status once it is in `state`, or the last one seen after `timeout`.
+  DeviceStatus wait_for_state(const std::string& device, DeviceState state, std::chrono::milliseconds timeout = 5s) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    DeviceStatus status = device_status(device);
+    while (status.state != state && std::chrono::steady_clock::now() < deadline) status = device_status(device);
+    return status;
+  }
+
   nlohmann::json call(const std::string& op, const nlohmann::json& args = nlohmann::json::object()) {
     auto reply = client().device_call("piper", op, args.dump());
     EXPECT_TRUE(reply) << op << ": " << reply.error().message;
@@ -125,8 +133,7 @@ TEST_F(PiperTest, LostLinkIsAFaultOthersKeepRunningAndTheArmDoesNotJumpOnReconne
   ASSERT_TRUE(session.send_positions({2.0F}));
   ASSERT_TRUE(wait_for_joints([](const JointState& s) { return s.position[0] > 0.3; }, 5s, "piper"));
   ASSERT_TRUE(sim_.control({{"op", "disconnect"}, {"ms", 1000}})["ok"].get<bool>());
-  DeviceStatus status;
-  for (int i = 0; i < 50 && status.state != DeviceState::kFault; ++i) status = device_status("piper");
+  const DeviceStatus status = wait_for_state("piper", DeviceState::kFault);
   ASSERT_EQ(status.state, DeviceState::kFault);
   EXPECT_NE(status.fault_text.find("CAN link closed"), std::string::npos) << status.fault_text;
 
@@ -136,11 +143,7 @@ TEST_F(PiperTest, LostLinkIsAFaultOthersKeepRunningAndTheArmDoesNotJumpOnReconne
   EXPECT_EQ(device_status("arm").state, DeviceState::kRunning);
   EXPECT_GT(device_status("arm").joint_states_published, arm_before + 100);
 
-  bool back = false;
-  for (int i = 0; i < 100 && !back; ++i) {
-    back = device_status("piper").state == DeviceState::kRunning;
-    if (!back) std::this_thread::sleep_for(50ms);
-  }
+  const bool back = wait_for_state("piper", DeviceState::kRunning, 10s).state == DeviceState::kRunning;
   ASSERT_TRUE(back) << "robotd did not reconnect: " << robotd_->log();
   const double at_reconnect = joint_state("piper").position[0];
   std::this_thread::sleep_for(500ms);
@@ -152,27 +155,21 @@ TEST_F(PiperTest, LostLinkIsAFaultOthersKeepRunningAndTheArmDoesNotJumpOnReconne
 TEST_F(PiperTest, KilledSimulatorIsReportedAndARestartedOneIsReconnected) {
   start(/*with_sim_arm=*/true);
   sim_.kill_hard();
-  DeviceStatus status;
-  for (int i = 0; i < 50 && status.state != DeviceState::kFault; ++i) status = device_status("piper");
+  const DeviceStatus status = wait_for_state("piper", DeviceState::kFault);
   ASSERT_EQ(status.state, DeviceState::kFault);
   EXPECT_NE(status.fault_text.find("CAN link closed"), std::string::npos) << status.fault_text;
   EXPECT_EQ(device_status("arm").state, DeviceState::kRunning);
   std::this_thread::sleep_for(500ms);
   EXPECT_EQ(device_status("piper").state, DeviceState::kFault) << "reconnected to nothing";
   sim_.restart();
-  bool back = false;
-  for (int i = 0; i < 100 && !back; ++i) {
-    back = device_status("piper").state == DeviceState::kRunning;
-    if (!back) std::this_thread::sleep_for(50ms);
-  }
+  const bool back = wait_for_state("piper", DeviceState::kRunning, 10s).state == DeviceState::kRunning;
   EXPECT_TRUE(back) << robotd_->log();
 }
 
 TEST_F(PiperTest, ArmCollisionIsAFaultWithTheArmsWords) {
   start(/*with_sim_arm=*/false);
   ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"arm_status", 7}})["ok"].get<bool>());
-  DeviceStatus status;
-  for (int i = 0; i < 50 && status.state != DeviceState::kFault; ++i) status = device_status("piper");
+  const DeviceStatus status = wait_for_state("piper", DeviceState::kFault);
   ASSERT_EQ(status.state, DeviceState::kFault);
   EXPECT_NE(status.fault_text.find("collision"), std::string::npos) << status.fault_text;
   ASSERT_TRUE(client().device_call("piper", "recover"));
