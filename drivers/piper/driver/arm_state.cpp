@@ -68,7 +68,7 @@ bool apply_frame(ArmState& state, const Frame& frame, std::int64_t now_ns) noexc
           state.status_seen = true;
           state.last_status_ns = now_ns;
         } else if constexpr (std::is_same_v<T, JointFeedbackPair>) {
-          const auto first = static_cast<std::size_t>(2 * value.pair);
+          const std::size_t first = 2 * static_cast<std::size_t>(value.pair);
           state.joints[first].position_rad = value.first_rad;
           state.joints[first + 1].position_rad = value.second_rad;
           state.joint_pairs_seen |= static_cast<std::uint8_t>(1U << static_cast<unsigned>(value.pair));
@@ -104,7 +104,7 @@ bool apply_frame(ArmState& state, const Frame& frame, std::int64_t now_ns) noexc
           state.master_mode = value;
           state.master_seen = true;
         } else if constexpr (std::is_same_v<T, JointTargetPair>) {
-          const auto first = static_cast<std::size_t>(2 * value.pair);
+          const std::size_t first = 2 * static_cast<std::size_t>(value.pair);
           state.master_joints_rad[first] = value.first_rad;
           state.master_joints_rad[first + 1] = value.second_rad;
           state.master_seen = true;
