@@ -222,6 +222,7 @@ void SimDriver::fill_feedback(Feedback& out) const noexcept {
     out.joints[i] = driver::JointFeedback{
         .position_rad = joint.position_rad, .velocity_rad_s = joint.velocity_rad_s, .effort_nm = joint.torque_nm};
   }
+  out.estop_input = estop_input_.load(std::memory_order_relaxed);
   out.has_imu = params_.imu;
   out.imu = driver::ImuSample{};
   if (params_.imu) out.imu.linear_acceleration_m_s2 = {0, 0, kStandardGravity_m_s2};

@@ -96,6 +96,7 @@ class SimDriver final : public driver::Driver {
 
   // Non-RT side (sim_driver_ops.cpp).
   Result<nlohmann::json> stop_feedback(const nlohmann::json& args);
+  Result<nlohmann::json> press_estop_input(const nlohmann::json& args);
   Result<nlohmann::json> inject_disconnect(const nlohmann::json& args);
   Result<nlohmann::json> raise_fault(const nlohmann::json& args);
   Result<nlohmann::json> set_external_torque(const nlohmann::json& args);
@@ -116,7 +117,9 @@ class SimDriver final : public driver::Driver {
   std::atomic<std::uint64_t> link_generation_{0};
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
-  std::atomic<std::int64_t> stall_ns_{0};  // the next read() blocks this long (a hung bus)
+  std::atomic<std::int64_t> stall_ns_{0};
+  std::atomic<bool> estop_input_{
+      false};  // the simulated controller's e-stop button  // the next read() blocks this long (a hung bus)
   // An injected disconnect lasts until this CLOCK_MONOTONIC time: recover() fails before it.
   std::atomic<std::int64_t> link_down_until_ns_{0};
   // Client send → write() latency of every frame that carries a new command (see

@@ -23,8 +23,9 @@ struct OpSpec {
   std::string_view help;
 };
 
-constexpr std::array<OpSpec, 7> kOps{{
+constexpr std::array<OpSpec, 8> kOps{{
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
+    {"estop_input", R"({"pressed": bool}: press or release the simulated controller's own e-stop button)"},
     {"disconnect",
      R"({"for_ms": int >= 0}: simulate a lost link; read()/write() report it and the joints damp; recover() )"
      R"(fails until for_ms has passed (0: the link is back as soon as it is recovered))"},
@@ -137,6 +138,7 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
   try {
     const nlohmann::json& arguments = args_object(args);
     if (op == "stop_feedback") return stop_feedback(arguments);
+    if (op == "estop_input") return press_estop_input(arguments);
     if (op == "disconnect") return inject_disconnect(arguments);
     if (op == "raise_fault") return raise_fault(arguments);
     if (op == "set_external_torque") return set_external_torque(arguments);
@@ -149,6 +151,17 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
   std::string known;
   for (const OpSpec& spec : kOps) known += (known.empty() ? "" : ", ") + std::string(spec.name);
   return make_error(ErrorCode::kInvalidArgument, "unknown op \"" + op + "\" (the sim driver has: " + known + ")");
+}
+
+Result<nlohmann::json> SimDriver::press_estop_input(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  reader.require("pressed", "true or false");
+  const bool pressed = reader.boolean_or("pressed", false);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("estop_input", errors);
+  estop_input_.store(pressed, std::memory_order_relaxed);
+  return nlohmann::json{{"estop_input", pressed ? "pressed" : "released"}};
 }
 
 Result<nlohmann::json> SimDriver::stop_feedback(const nlohmann::json& args) {

@@ -228,6 +228,34 @@ TEST_F(SafetyTest, LostLinkReconnectsByItselfWhenTheLinkReturnsAndTheArmDoesNotJ
   EXPECT_NE(robotd_->log().find("device 'arm': reconnected after"), std::string::npos) << robotd_->log();
 }
 
+// A device's own e-stop input (PAROL6's E-stop connector, say) engages robotd's e-stop; it
+// latches past the release, and cannot be reset while the button is still pressed.
+TEST_F(SafetyTest, DeviceEstopInputEngagesTheEstopAndBlocksItsResetWhilePressed) {
+  start_robotd();
+  Session session = acquire({0, 1});
+  ASSERT_TRUE(client().device_call("arm", "estop_input", R"({"pressed": true})"));
+  DeviceStatus status = device_status();
+  for (int i = 0; i < 20 && !status.estop_engaged; ++i) status = device_status();
+  ASSERT_TRUE(status.estop_engaged);
+  EXPECT_EQ(status.state, DeviceState::kEstop);
+  EXPECT_NE(robotd_->log().find("e-stop applied (engaged by the device's own e-stop input)"), std::string::npos)
+      << robotd_->log();
+
+  const auto refused = client().reset_estop("arm");
+  ASSERT_FALSE(refused) << "reset while the button is pressed";
+  EXPECT_NE(refused.error().message.find("still pressed"), std::string::npos) << refused.error().message;
+
+  ASSERT_TRUE(client().device_call("arm", "estop_input", R"({"pressed": false})"));
+  std::this_thread::sleep_for(50ms);
+  EXPECT_TRUE(device_status().estop_engaged) << "released, but latched until someone resets";
+  const auto reset = client().reset_estop("arm");
+  ASSERT_TRUE(reset);
+  EXPECT_TRUE(reset.value().success) << reset.value().message;
+  status = device_status();
+  for (int i = 0; i < 20 && status.estop_engaged; ++i) status = device_status();
+  EXPECT_FALSE(status.estop_engaged);
+}
+
 TEST_F(SafetyTest, ClampPolicyClampsInsteadOfRejecting) {
   start_robotd(sim_arm_config(domain_.id(), nullptr, {{"limit_policy", "clamp"}}));
   Session session = acquire({0, 1});

@@ -129,6 +129,7 @@ void StatePublisher::handle(const device::LoopEvent& event) {
                     event.fault.code, event.fault.text.data(), to_string(event.behavior), name);
       break;
     case device::LoopEvent::Type::kEstopApplied:
+      if (event.by_estop_input) device_.set_estop_note("engaged by the device's own e-stop input");
       spdlog::warn("device '{}': e-stop applied ({}), joints {}", name, device_.estop_note(),
                    to_string(event.behavior));
       break;

@@ -257,12 +257,22 @@ void ControlLoop::apply_target(std::size_t j, const JointTarget& target, const S
 // --- safety ---------------------------------------------------------------------------------
 
 void ControlLoop::update_estop(std::int64_t now_ns) noexcept {
+  // A pressed e-stop input on the device engages robotd's e-stop as a client's request would;
+  // it latches: releasing the button does not move anything until someone resets.
+  const bool input_pressed = have_feedback_ && feedback_.estop_input;
+  channel_.estop_input_pressed.store(input_pressed, std::memory_order_release);
+  bool by_input = false;
+  if (input_pressed && !channel_.estop.load(std::memory_order_acquire)) {
+    channel_.estop.store(true, std::memory_order_release);
+    by_input = true;
+  }
   const bool engaged = channel_.estop.load(std::memory_order_acquire);
   if (engaged == estop_applied_) return;
   estop_applied_ = engaged;
   LoopEvent event;
   event.time_ns = now_ns;
   event.behavior = settings_.safe_behavior;
+  event.by_estop_input = by_input;
   if (engaged) {
     enter_safe_state();
     event.type = LoopEvent::Type::kEstopApplied;

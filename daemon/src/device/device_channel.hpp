@@ -78,6 +78,7 @@ struct LoopEvent {
   Behavior behavior = Behavior::kKeep;
   std::int64_t time_ns = 0;
   std::int64_t silence_ns = 0;  // timeout: time since the session's last command
+  bool by_estop_input = false;  // e-stop applied because the device's own e-stop input is pressed
   driver::FaultInfo fault;
 };
 
@@ -135,6 +136,7 @@ struct DeviceChannel {
   std::atomic<bool> black_box_frozen{false};  // RT stops writing until cleared
 
   std::atomic<bool> estop{false};
+  std::atomic<bool> estop_input_pressed{false};  // RT → services: the device's e-stop input, now
   std::atomic<bool> maintenance_requested{false};
   std::atomic<bool> maintenance_active{false};  // RT ack: no driver I/O until cleared
   std::atomic<bool> maintenance_clears_fault{false};

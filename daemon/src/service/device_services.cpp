@@ -76,6 +76,14 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
     targets.push_back(devices_[index.value()]);
   }
   const std::string who = request.node_name.empty() ? "(unnamed)" : request.node_name;
+  if (!request.engage) {
+    for (device::Device* device : targets) {
+      if (device->channel().estop_input_pressed.load(std::memory_order_acquire)) {
+        return EstopResponse{false, "cannot reset the e-stop of '" + device->model().name +
+                                        "': its own e-stop input is still pressed; release the button first"};
+      }
+    }
+  }
   std::string names;
   for (device::Device* device : targets) {
     names += (names.empty() ? "'" : ", '") + device->model().name + "'";

@@ -25,7 +25,7 @@
 namespace robotd::driver {
 
 /// Bump when anything in this header or types.hpp changes layout or meaning.
-inline constexpr std::uint32_t kAbiVersion = 2;
+inline constexpr std::uint32_t kAbiVersion = 3;
 
 struct JointLimits {
   double position_min_rad = -3.14;

@@ -66,6 +66,9 @@ struct Feedback {
   ImuSample imu{};
   bool has_end_pose = false;  // the end effector's pose (e.g. forward kinematics of the joints)
   Pose end_pose{};
+  /// The device's own e-stop input (a button wired to the controller) is pressed: robotd
+  /// engages its e-stop on the device, and refuses to reset it while the input stays pressed.
+  bool estop_input = false;
 };
 
 /// A device fault as the driver reports it: a vendor code and a short human-readable text.
