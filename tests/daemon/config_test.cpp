@@ -48,13 +48,15 @@ std::size_t count_lines_starting_with(const std::string& text, const std::string
 TEST(Config, ShippedConfigParsesWithItsSimulatedDevicesOnLoopback) {
   const Result<Config> config = load_config_file(ROBOTD_SOURCE_DIR "/config/robotd.json");
   ASSERT_TRUE(config.ok()) << config.error().message;
-  ASSERT_EQ(config.value().devices.size(), 3u);
+  ASSERT_EQ(config.value().devices.size(), 4u);
   EXPECT_EQ(config.value().devices[0].name, "arm");
   EXPECT_EQ(config.value().devices[1].name, "humanoid");
   EXPECT_EQ(config.value().devices[0].driver, "sim");
   EXPECT_EQ(config.value().devices[1].driver, "sim");
   EXPECT_EQ(config.value().devices[2].driver, "piper");
   EXPECT_FALSE(config.value().devices[2].required) << "the demo runs without the PiPER simulator too";
+  EXPECT_EQ(config.value().devices[3].driver, "parol6");
+  EXPECT_FALSE(config.value().devices[3].required);
   EXPECT_EQ(config.value().dds.network_interface, "127.0.0.1");
   EXPECT_FALSE(config.value().dds.multicast);
   EXPECT_EQ(config.value().devices[0].params["joint_count"], 6);

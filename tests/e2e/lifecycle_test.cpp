@@ -40,7 +40,7 @@ TEST_F(LifecycleTest, SigtermBringsTheArmToItsSafeStopAndExitsZero) {
   request.device = "arm";
   request.timeout = 5s;
   auto session = client().request_control(request);
-  ASSERT_TRUE(session);
+  ASSERT_TRUE(session) << session.error().message;
   for (int i = 0; i < 30; ++i) {  // start a fast move and stop robotd in the middle of it
     ASSERT_TRUE(session.value().send_positions({2.0F, 2.0F, 2.0F, 2.0F, 2.0F, 2.0F}));
     std::this_thread::sleep_for(10ms);

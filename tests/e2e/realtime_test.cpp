@@ -76,7 +76,7 @@ TEST_F(RealtimeTest, HammeringServicesDoesNotStallTheLoop) {
   request.device = "arm";
   request.timeout = 500ms;
   auto session = client().request_control(request);
-  ASSERT_TRUE(session);
+  ASSERT_TRUE(session) << session.error().message;
   stream_commands(session.value(), 2s);
   const DeviceStatus quiet = device_status();
 

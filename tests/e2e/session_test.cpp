@@ -168,7 +168,7 @@ TEST_F(SessionTest, KilledClientZeroTorqueFallbackLetsTheLoadedJointFall) {
 TEST_F(SessionTest, KeepFallbackHoldsPosition) {
   start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
   auto session = client().request_control(arm_request({}, Behavior::kKeep, 200ms));
-  ASSERT_TRUE(session);
+  ASSERT_TRUE(session) << session.error().message;
   const std::vector<float> target{0.2F, 0.4F, 0, 0, 0, 0};
   ASSERT_TRUE(wait_for_joints(
       [&](const JointState& s) {
@@ -187,7 +187,7 @@ TEST_F(SessionTest, KeepFallbackHoldsPosition) {
 TEST_F(SessionTest, ResetZeroRefusedWhileSessionActiveAndWorksWithout) {
   start_robotd();
   auto session = client().request_control(arm_request({0, 1}, Behavior::kKeep, 5000ms));
-  ASSERT_TRUE(session);
+  ASSERT_TRUE(session) << session.error().message;
   ASSERT_TRUE(wait_for_joints(
       [&](const JointState& s) {
         (void)session.value().send_positions({0.3F, -0.2F});
@@ -213,7 +213,7 @@ TEST_F(SessionTest, ResetZeroRefusedWhileSessionActiveAndWorksWithout) {
 TEST_F(SessionTest, CommandsFromAReleasedSessionAreRejected) {
   start_robotd();
   auto session = client().request_control(arm_request());
-  ASSERT_TRUE(session);
+  ASSERT_TRUE(session) << session.error().message;
   const std::string uuid = session.value().uuid();
   ASSERT_TRUE(session.value().release(Behavior::kKeep));
   ControlCommand stale;

@@ -47,6 +47,7 @@ class InstallTest(unittest.TestCase):
             f"{ARGS.libdir}/robotd/drivers/librobotd_driver_sim.so",
             f"{ARGS.libdir}/robotd/drivers/librobotd_driver_piper.so",
             "bin/robotd-piper-sim",
+            "bin/robotd-parol6-sim",
             f"{ARGS.libdir}/librobotd_client.so",
             f"{ARGS.libdir}/cmake/robotd_client/robotd_clientConfig.cmake",
             "include/robotd/client.hpp",

@@ -1,81 +1,31 @@
 // The control channel's ops (README.md in this folder): what tests ask the simulator to report
 // or to do wrong.
-#include <algorithm>
 #include <array>
 #include <cstdio>
-#include <initializer_list>
 #include <linux/can/error.h>
 #include <stdexcept>
 #include <string>
 
 #include <spdlog/spdlog.h>
 
+#include "robotd/sim_control/control_request.hpp"
 #include "simulator.hpp"
 
 namespace robotd::piper::sim {
 namespace {
 
 using nlohmann::json;
+using sim_control::boolean_field;
+using sim_control::expect_fields;
+using sim_control::integer_field;
+using sim_control::number_field;
+using sim_control::RequestError;
 
 constexpr std::int64_t kMaxDurationMs = 3'600'000;
 constexpr std::int64_t kMaxGarbageFrames = 100'000;
 constexpr const char* kOps =
     "state, reset_counters, silence, drop_replies, garbage, bus_error, raise_error, clear_error, disconnect, "
     "set_joint";
-
-/// A request that names a field wrongly: the reply says which and what is expected.
-class RequestError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-void expect_fields(const json& request, const std::string& op, std::initializer_list<const char*> fields) {
-  for (const auto& item : request.items()) {
-    const std::string& key = item.key();
-    if (key == "op") continue;
-    if (std::none_of(fields.begin(), fields.end(), [&key](const char* field) { return key == field; })) {
-      std::string expected;
-      for (const char* field : fields) {
-        expected += expected.empty() ? "\"" : ", \"";
-        expected += field;
-        expected += '"';
-      }
-      std::string message = "op \"" + op + "\" does not take \"";
-      message += key;
-      message += expected.empty() ? "\": it takes no fields" : "\"; its fields: ";
-      message += expected;
-      throw RequestError(message);
-    }
-  }
-}
-
-std::int64_t integer(const json& request, const std::string& op, const char* name, std::int64_t min, std::int64_t max) {
-  const std::string range = std::to_string(min) + " … " + std::to_string(max);
-  const auto field = request.find(name);
-  if (field == request.end()) throw RequestError("op \"" + op + "\" needs \"" + name + "\": an integer " + range);
-  if (!field->is_number_integer() || field->get<std::int64_t>() < min || field->get<std::int64_t>() > max) {
-    throw RequestError("op \"" + op + "\": \"" + name + "\" must be an integer " + range + ", not " + field->dump());
-  }
-  return field->get<std::int64_t>();
-}
-
-double number(const json& request, const std::string& op, const char* name) {
-  const auto field = request.find(name);
-  if (field == request.end() || !field->is_number()) {
-    throw RequestError("op \"" + op + "\" needs \"" + name + "\": a number" +
-                       (field == request.end() ? std::string() : ", not " + field->dump()));
-  }
-  return field->get<double>();
-}
-
-bool boolean(const json& request, const std::string& op, const char* name) {
-  const auto field = request.find(name);
-  if (field == request.end() || !field->is_boolean()) {
-    throw RequestError("op \"" + op + "\" needs \"" + name + "\": true or false" +
-                       (field == request.end() ? std::string() : ", not " + field->dump()));
-  }
-  return field->get<bool>();
-}
 
 std::string id_text(std::uint32_t key) {
   std::array<char, 16> text{};
@@ -96,11 +46,7 @@ json pose_json(const CartesianPose& pose) {
 
 json Simulator::control(const json& request) {
   try {
-    const auto op_field = request.find("op");
-    if (op_field == request.end() || !op_field->is_string()) {
-      throw RequestError(std::string("the request needs \"op\": a string, one of ") + kOps);
-    }
-    const std::string op = op_field->get<std::string>();
+    const std::string op = sim_control::op_of(request, kOps);
     const std::int64_t now = monotonic_ns();
     json reply = {{"ok", true}};
     if (op == "state") {
@@ -113,14 +59,14 @@ json Simulator::control(const json& request) {
       frames_sent_ = 0;
     } else if (op == "silence") {
       expect_fields(request, op, {"ms"});
-      const std::int64_t ms = integer(request, op, "ms", 0, kMaxDurationMs);
+      const std::int64_t ms = integer_field(request, op, "ms", 0, kMaxDurationMs);
       silent_until_ns_ = now + ms * 1'000'000;
     } else if (op == "drop_replies") {
       expect_fields(request, op, {"enabled"});
-      drop_replies_ = boolean(request, op, "enabled");
+      drop_replies_ = boolean_field(request, op, "enabled");
     } else if (op == "garbage") {
       expect_fields(request, op, {"frames"});
-      const std::int64_t frames = integer(request, op, "frames", 1, kMaxGarbageFrames);
+      const std::int64_t frames = integer_field(request, op, "frames", 1, kMaxGarbageFrames);
       garbage_pending_ += frames;
       reply["queued"] = garbage_pending_;
     } else if (op == "bus_error") {
@@ -138,14 +84,14 @@ json Simulator::control(const json& request) {
       arm_.clear_errors();
     } else if (op == "disconnect") {
       expect_fields(request, op, {"ms"});
-      const std::int64_t ms = integer(request, op, "ms", 0, kMaxDurationMs);
+      const std::int64_t ms = integer_field(request, op, "ms", 0, kMaxDurationMs);
       bus_->close();  // every node sees its connection end
       bus_open_ = false;
       reopen_bus_at_ns_ = now + ms * 1'000'000;
     } else if (op == "set_joint") {
       expect_fields(request, op, {"joint", "position_rad"});
-      const auto joint = static_cast<int>(integer(request, op, "joint", 1, kArmJoints));
-      const double position = number(request, op, "position_rad");
+      const auto joint = static_cast<int>(integer_field(request, op, "joint", 1, kArmJoints));
+      const double position = number_field(request, op, "position_rad");
       if (!arm_.teleport(joint, position)) {
         const JointSettings& limits = arm_.settings().joints.at(static_cast<std::size_t>(joint - 1));
         throw RequestError("op \"set_joint\": position_rad " + std::to_string(position) + " is outside joint " +
@@ -158,9 +104,9 @@ json Simulator::control(const json& request) {
     if (!options_.quiet) spdlog::info("control: {}", request.dump());
     return reply;
   } catch (const RequestError& error) {
-    return {{"ok", false}, {"error", error.what()}};
+    return sim_control::error_reply(error.what());
   } catch (const std::exception& error) {
-    return {{"ok", false}, {"error", std::string("the simulator failed on this request: ") + error.what()}};
+    return sim_control::error_reply(std::string("the simulator failed on this request: ") + error.what());
   }
 }
 
@@ -186,14 +132,14 @@ json Simulator::raise_error(const json& request) {
   std::optional<std::uint8_t> gripper_bits;
   int joint = 0;
   if (request.contains("arm_status"))
-    arm_status = static_cast<std::uint8_t>(integer(request, op, "arm_status", 0, 255));
-  if (has_joint) joint = static_cast<int>(integer(request, op, "joint", 1, kArmJoints));
+    arm_status = static_cast<std::uint8_t>(integer_field(request, op, "arm_status", 0, 255));
+  if (has_joint) joint = static_cast<int>(integer_field(request, op, "joint", 1, kArmJoints));
   if (request.contains("driver_status_bits")) {
-    driver_bits = static_cast<std::uint8_t>(integer(request, op, "driver_status_bits", 0, 255));
+    driver_bits = static_cast<std::uint8_t>(integer_field(request, op, "driver_status_bits", 0, 255));
   }
-  if (request.contains("comm_error")) comm_error = boolean(request, op, "comm_error");
+  if (request.contains("comm_error")) comm_error = boolean_field(request, op, "comm_error");
   if (request.contains("gripper_status_bits")) {
-    gripper_bits = static_cast<std::uint8_t>(integer(request, op, "gripper_status_bits", 0, 255));
+    gripper_bits = static_cast<std::uint8_t>(integer_field(request, op, "gripper_status_bits", 0, 255));
   }
   if (arm_status) arm_.inject_arm_status(*arm_status);
   if (driver_bits) arm_.inject_driver_bits(joint, *driver_bits);

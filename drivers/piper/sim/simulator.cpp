@@ -9,6 +9,7 @@
 #include "feedback.hpp"
 #include "garbage_frames.hpp"
 #include "robotd/transport/can_bus.hpp"
+#include "robotd/transport/unix_socket.hpp"
 
 namespace robotd::piper::sim {
 namespace {
@@ -47,7 +48,8 @@ Simulator::Simulator(SimOptions options)
 }
 
 Result<void> Simulator::open() {
-  if (options_.bus.kind == transport::CanLinkConfig::Kind::kStandIn && socket_in_use(options_.bus.path)) {
+  if (options_.bus.kind == transport::CanLinkConfig::Kind::kStandIn &&
+      transport::unix_socket_in_use(options_.bus.path)) {
     return make_error(ErrorCode::kNotAvailable,
                       "the stand-in bus " + options_.bus.path + " is in use: another simulator listens there");
   }
@@ -70,7 +72,9 @@ void Simulator::run(const volatile std::sig_atomic_t& stop) {
   next_high_rate_ns_ = start;
   next_low_rate_ns_ = start;
   std::int64_t wake_ns = start;
-  const ControlServer::Handler handler = [this](const nlohmann::json& request) { return control(request); };
+  const sim_control::ControlServer::Handler handler = [this](const nlohmann::json& request) {
+    return control(request);
+  };
   while (stop == 0) {
     const std::int64_t now = monotonic_ns();
     if (control_server_) control_server_->poll(handler);

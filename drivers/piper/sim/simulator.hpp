@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "arm_model.hpp"
-#include "control_server.hpp"
 #include "controller.hpp"
+#include "robotd/sim_control/control_server.hpp"
 #include "robotd/transport/can_transport.hpp"
 #include "sim_options.hpp"
 
@@ -63,7 +63,7 @@ class Simulator {
   ArmModel arm_;
   Controller controller_;
   std::unique_ptr<transport::CanTransport> bus_;
-  std::optional<ControlServer> control_server_;
+  std::optional<sim_control::ControlServer> control_server_;
   std::vector<CanMessage> outgoing_;
 
   std::int64_t physics_ns_ = 0;

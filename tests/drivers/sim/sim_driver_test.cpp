@@ -104,7 +104,8 @@ TEST_F(SimDriverTest, DescribeReportsJointsLimitsCapabilitiesAndOps) {
     op_names += op.name + " ";
     EXPECT_FALSE(op.help.empty()) << op.name;
   }
-  EXPECT_EQ(op_names, "stop_feedback disconnect raise_fault set_external_torque stall command_latency state ");
+  EXPECT_EQ(op_names,
+            "stop_feedback estop_input disconnect raise_fault set_external_torque stall command_latency state ");
 }
 
 TEST_F(SimDriverTest, ConfigureRejectsInvalidParamsNamingTheKey) {
@@ -210,6 +211,19 @@ TEST_F(SimDriverTest, StopFeedbackReportsNoNewDataWhileTheSimulationRuns) {
   ASSERT_EQ(read(), IoResult::kOk);
   EXPECT_NEAR(feedback_.joints[0].position_rad, 0.5, 0.01);
   EXPECT_EQ(diagnostic("feedback"), "streaming");
+}
+
+TEST_F(SimDriverTest, EstopInputShowsInTheFeedbackWhilePressed) {
+  start();
+  ASSERT_EQ(read(), IoResult::kOk);
+  EXPECT_FALSE(feedback_.estop_input);
+  call("estop_input", {{"pressed", true}});
+  ASSERT_EQ(read(), IoResult::kOk);
+  EXPECT_TRUE(feedback_.estop_input);
+  call("estop_input", {{"pressed", false}});
+  ASSERT_EQ(read(), IoResult::kOk);
+  EXPECT_FALSE(feedback_.estop_input);
+  EXPECT_FALSE(driver_.call("estop_input", json::object()).ok()) << "pressed is required";
 }
 
 TEST_F(SimDriverTest, InjectedDisconnectReportsLinkLostUntilRecoverWithoutAPositionJump) {
@@ -431,7 +445,7 @@ TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   ASSERT_FALSE(result.ok());
   EXPECT_EQ(result.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(result.error().message,
-            R"(unknown op "levitate" (the sim driver has: stop_feedback, disconnect, raise_fault, )"
+            R"(unknown op "levitate" (the sim driver has: stop_feedback, estop_input, disconnect, raise_fault, )"
             R"(set_external_torque, stall, command_latency, state))");
 }
 

@@ -1,49 +1,24 @@
-#include "control_server.hpp"
+#include "robotd/sim_control/control_server.hpp"
 
 #include <array>
 #include <cerrno>
 #include <sys/socket.h>
-#include <sys/un.h>
-#include <system_error>
 #include <unistd.h>
 
+#include "robotd/sim_control/control_request.hpp"
 #include "robotd/transport/unix_socket.hpp"
 
-namespace robotd::piper::sim {
+namespace robotd::sim_control {
 namespace {
 
 constexpr std::size_t kMaxLine = std::size_t{64} * 1024;
 constexpr int kMaxClients = 16;
 
-bool fill_address(const std::string& path, sockaddr_un& address) {
-  address = sockaddr_un{};
-  address.sun_family = AF_UNIX;
-  if (path.empty() || path.size() >= sizeof(address.sun_path)) return false;
-  path.copy(address.sun_path, sizeof(address.sun_path) - 1);
-  return true;
-}
-
-bool can_connect(const std::string& path, int type) {
-  sockaddr_un address{};
-  if (!fill_address(path, address)) return false;
-  const int sock = socket(AF_UNIX, type | SOCK_CLOEXEC, 0);
-  if (sock < 0) return false;
-  const bool connected = connect(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0;  // NOLINT
-  ::close(sock);
-  return connected;
-}
-
-nlohmann::json error_reply(const std::string& message) { return {{"ok", false}, {"error", message}}; }
-
 }  // namespace
-
-bool socket_in_use(const std::string& path) {
-  return can_connect(path, SOCK_STREAM) || can_connect(path, SOCK_SEQPACKET);
-}
 
 Result<void> ControlServer::open() {
   close();
-  if (socket_in_use(path_)) {
+  if (transport::unix_socket_in_use(path_)) {
     return make_error(ErrorCode::kNotAvailable, "control socket " + path_ + " is in use by another process");
   }
   auto listener = transport::listen_unix_socket(path_, SOCK_STREAM, kMaxClients);
@@ -121,4 +96,4 @@ bool ControlServer::serve(Client& client, const Handler& handler) {
   return !peer_closed;
 }
 
-}  // namespace robotd::piper::sim
+}  // namespace robotd::sim_control

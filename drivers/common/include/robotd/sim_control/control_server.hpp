@@ -1,6 +1,7 @@
-// The simulator's control channel for tests: a unix stream socket; each request is one JSON
-// object on a line, each reply one JSON object on a line (drivers/piper/sim/README.md lists the
-// ops). Polled from the simulator's loop: non-blocking, single-threaded.
+// A simulator's control channel for tests: a unix stream socket; each request is one JSON
+// object on a line, each reply one JSON object on a line ({"ok": true, …} or {"ok": false,
+// "error": "…"}). Polled from the simulator's loop: non-blocking, single-threaded. Each
+// simulator's README lists its ops.
 #pragma once
 
 #include <functional>
@@ -11,7 +12,7 @@
 
 #include "robotd/result.hpp"
 
-namespace robotd::piper::sim {
+namespace robotd::sim_control {
 
 class ControlServer {
  public:
@@ -44,7 +45,4 @@ class ControlServer {
   std::vector<Client> clients_;
 };
 
-/// Whether a process listens on the unix socket at `path` (stream or seqpacket).
-bool socket_in_use(const std::string& path);
-
-}  // namespace robotd::piper::sim
+}  // namespace robotd::sim_control

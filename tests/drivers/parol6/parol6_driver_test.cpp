@@ -1,0 +1,374 @@
+// The PAROL6 driver against robotd-parol6-sim on a pseudo-terminal: a real serial line, a real
+// simulator process, and a 1 kHz thread that calls read()/write() the way robotd's loop does.
+#include "driver/parol6_driver.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "codec/joint_units.hpp"
+#include "kinematics/parol6_kinematics.hpp"
+#include "parol6_sim_process.hpp"
+#include "robotd/driver/json_reader.hpp"
+
+namespace robotd::parol6 {
+namespace {
+
+using namespace std::chrono_literals;
+using driver::IoResult;
+using driver::JointCommandKind;
+using testing::Parol6SimProcess;
+
+/// Calls read() and write() every millisecond like robotd's RT loop, with the command a test sets.
+class DriverLoop {
+ public:
+  explicit DriverLoop(Parol6Driver& driver) : driver_(driver) {
+    command_.joint_count = kJoints;
+    thread_ = std::thread([this] { run(); });
+  }
+  DriverLoop(const DriverLoop&) = delete;
+  DriverLoop& operator=(const DriverLoop&) = delete;
+  ~DriverLoop() {
+    running_ = false;
+    thread_.join();
+  }
+
+  void set_command(const driver::CommandFrame& command) {
+    const std::lock_guard lock(mutex_);
+    command_ = command;
+  }
+  template <class Work>
+  auto paused(Work work) {
+    paused_ = true;
+    while (!idle_) std::this_thread::sleep_for(1ms);
+    auto result = work();
+    paused_ = false;
+    return result;
+  }
+  driver::Feedback feedback() {
+    const std::lock_guard lock(mutex_);
+    return feedback_;
+  }
+  IoResult last_read() { return last_read_.load(); }
+  std::string fault_text() {
+    const std::lock_guard lock(mutex_);
+    return fault_.text.data();
+  }
+  template <class Done>
+  bool wait_for(Done done, std::chrono::milliseconds timeout = 5s) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (done(*this)) return true;
+      std::this_thread::sleep_for(5ms);
+    }
+    return false;
+  }
+
+ private:
+  void run() {
+    auto next = std::chrono::steady_clock::now();
+    while (running_) {
+      next += 1ms;
+      std::this_thread::sleep_until(next);
+      if (paused_) {
+        idle_ = true;
+        continue;
+      }
+      idle_ = false;
+      driver::Feedback feedback;
+      driver::FaultInfo fault;
+      const IoResult read = driver_.read(feedback, fault);
+      driver::CommandFrame command;
+      {
+        const std::lock_guard lock(mutex_);
+        command = command_;
+        if (read == IoResult::kOk) feedback_ = feedback;
+        if (fault.code != 0) fault_ = fault;
+      }
+      last_read_ = read;
+      if (read == IoResult::kDisconnected) continue;
+      command.tick_deadline_ns =
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+              .count();
+      driver::FaultInfo write_fault;
+      (void)driver_.write(command, write_fault);
+    }
+  }
+
+  Parol6Driver& driver_;
+  std::mutex mutex_;
+  driver::CommandFrame command_;
+  driver::Feedback feedback_;
+  driver::FaultInfo fault_;
+  std::atomic<IoResult> last_read_{IoResult::kNoNewData};
+  std::atomic<bool> paused_{false};
+  std::atomic<bool> idle_{false};
+  std::atomic<bool> running_{true};
+  std::thread thread_;
+};
+
+nlohmann::json driver_params(const std::string& pty) { return {{"serial", {{"device", pty}, {"baud", 3000000}}}}; }
+
+JointVector standby_rad() {
+  JointVector q{};
+  for (int j = 0; j < kJoints; ++j) {
+    q[static_cast<std::size_t>(j)] = steps_to_rad(j, joint_units()[static_cast<std::size_t>(j)].standby_steps);
+  }
+  return q;
+}
+
+driver::CommandFrame positions(const JointVector& q, bool owned = true) {
+  driver::CommandFrame frame;
+  frame.joint_count = kJoints;
+  for (std::size_t j = 0; j < kJoints; ++j) {
+    frame.joints[j] = {.kind = JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
+  }
+  return frame;
+}
+
+bool near(const driver::Feedback& feedback, const JointVector& q, double tolerance) {
+  for (std::size_t j = 0; j < kJoints; ++j) {
+    if (std::fabs(feedback.joints[j].position_rad - q[j]) > tolerance) return false;
+  }
+  return true;
+}
+
+class Parol6DriverTest : public ::testing::Test {
+ protected:
+  void SetUp() override { ASSERT_TRUE(driver_.configure(driver_params(sim_.pty_path()))); }
+  Parol6SimProcess sim_{Parol6SimProcess::unique_path("parol6-driver"), {"--homed", "--homing-ms", "600"}};
+  Parol6Driver driver_;
+};
+
+TEST(Parol6Configs, ShippedExamplesParse) {
+  for (const char* file : {"config/examples/parol6.json", "config/examples/parol6-sim.json", "config/robotd.json"}) {
+    std::ifstream in(std::string(ROBOTD_SOURCE_DIR) + "/" + file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<std::string> errors;
+    const auto config = parse_json_with_comments(text, file, errors);
+    ASSERT_TRUE(config) << join_errors(errors);
+    for (const auto& device : config->at("devices")) {
+      if (device.at("driver") != "parol6") continue;
+      const auto params = parse_parol6_params(device.at("params"));
+      EXPECT_TRUE(params) << file << ": " << params.error().message;
+    }
+  }
+}
+
+TEST(Parol6Params, BadParamsAreNamed) {
+  Parol6Driver driver;
+  const auto configured = driver.configure({{"serial", {{"device", "/dev/ttyACM0"}, {"baud", 12345}}},
+                                            {"exchange_rate_hz", 5},
+                                            {"joints", {{"joint7", {{"velocity_max_rad_s", 1}}}}},
+                                            {"gripper_id", 16}});
+  ASSERT_FALSE(configured);
+  const std::string& message = configured.error().message;
+  for (const char* key : {"serial.baud", "exchange_rate_hz", "joint7", "gripper_id"}) {
+    EXPECT_NE(message.find(key), std::string::npos) << key << " in: " << message;
+  }
+}
+
+TEST_F(Parol6DriverTest, ConnectFailsClearlyWithoutABoard) {
+  Parol6Driver lonely;
+  ASSERT_TRUE(lonely.configure(driver_params("/tmp/robotd-parol6-nothing-here")));
+  const auto connected = lonely.connect();
+  ASSERT_FALSE(connected);
+  EXPECT_NE(connected.error().message.find("does not exist"), std::string::npos) << connected.error().message;
+
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 3000}})["ok"].get<bool>());
+  const auto silent = driver_.connect();
+  ASSERT_FALSE(silent);
+  EXPECT_EQ(silent.error().code, ErrorCode::kNotAvailable);
+  EXPECT_NE(silent.error().message.find("no answer from the PAROL6 board"), std::string::npos)
+      << silent.error().message;
+}
+
+TEST_F(Parol6DriverTest, StreamedPositionsMoveTheSteppersSmoothly) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const JointVector start = standby_rad();
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
+  // A 1 kHz ramp like robotd's limiter makes: 0.3 rad on J1 over 1 s.
+  const auto t0 = std::chrono::steady_clock::now();
+  double worst_lag = 0;
+  for (;;) {
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (t > 1.2) break;
+    JointVector target = start;
+    target[0] += 0.3 * std::min(t, 1.0);
+    loop.set_command(positions(target));
+    if (t > 0.1 && t < 1.0)
+      worst_lag = std::max(worst_lag, std::fabs(loop.feedback().joints[0].position_rad - target[0]));
+    std::this_thread::sleep_for(1ms);
+  }
+  JointVector end = start;
+  end[0] += 0.3;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), end, 2e-3); }));
+  // The board is fed the target one exchange ahead with its speed: it follows within about
+  // one exchange of motion (0.3 rad/s × 10 ms = 3 mrad) plus a reply's age.
+  EXPECT_LT(worst_lag, 0.012) << "lag behind the ramp";
+  EXPECT_NEAR(loop.feedback().joints[0].velocity_rad_s, 0.0, 0.05);
+  EXPECT_TRUE(loop.feedback().has_end_pose);
+}
+
+TEST_F(Parol6DriverTest, WithoutASessionTheBoardIsLeftIdle) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  loop.set_command(positions(standby_rad(), /*owned=*/false));
+  std::this_thread::sleep_for(100ms);
+  const nlohmann::json state = sim_.control({{"op", "state"}});
+  EXPECT_EQ(state["command"], 255) << state.dump();
+}
+
+TEST_F(Parol6DriverTest, EstopInputIsReportedAndDisablesTheBoard) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  loop.set_command(positions(standby_rad()));
+  ASSERT_TRUE(sim_.control({{"op", "estop"}, {"pressed", true}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().estop_input; }));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop&) {
+    return sim_.control({{"op", "state"}})["command"] == 102;
+  })) << "DISABLE while the E-stop input is pressed";
+  ASSERT_TRUE(sim_.control({{"op", "estop"}, {"pressed", false}})["ok"].get<bool>());
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return !l.feedback().estop_input; }));
+}
+
+TEST_F(Parol6DriverTest, HomeRunsTheBoardsSequence) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const auto homed = driver_.call("home", {{"wait", true}});
+  ASSERT_TRUE(homed) << homed.error().message;
+  EXPECT_TRUE(homed.value()["homed"].get<bool>());
+  EXPECT_TRUE(near(loop.feedback(), standby_rad(), 1e-3));
+}
+
+TEST_F(Parol6DriverTest, JogAndMovesRunAndStopAtTheirEnd) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  const JointVector start = standby_rad();
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
+  const auto jog = driver_.call("jog", {{"joint", 4}, {"velocity_rad_s", 0.5}, {"duration_s", 0.4}});
+  ASSERT_TRUE(jog) << jog.error().message;
+  JointVector jogged = start;
+  jogged[3] += 0.2;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), jogged, 3e-3); }))
+      << loop.feedback().joints[3].position_rad;
+
+  JointVector target = start;
+  target[1] -= 0.2;
+  target[2] += 0.2;
+  const auto move = driver_.call("move_joints", {{"joints_rad", target}, {"duration_s", 0.6}});
+  ASSERT_TRUE(move) << move.error().message;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), target, 3e-3); }));
+
+  const auto tool = driver_.call("fk", nullptr);
+  ASSERT_TRUE(tool);
+  nlohmann::json pose = tool.value()["tool"];
+  pose["z_m"] = pose["z_m"].get<double>() + 0.02;
+  pose["duration_s"] = 0.8;
+  const auto line = driver_.call("move_cart", pose);
+  ASSERT_TRUE(line) << line.error().message;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop&) {
+    const auto now = driver_.call("fk", nullptr);
+    return now && std::fabs(now.value()["tool"]["z_m"].get<double>() - pose["z_m"].get<double>()) < 0.001;
+  }));
+}
+
+TEST_F(Parol6DriverTest, MovesAreRefusedWhileASessionDrives) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  loop.set_command(positions(standby_rad()));
+  std::this_thread::sleep_for(50ms);
+  const auto refused = driver_.call("jog", {{"joint", 1}, {"velocity_rad_s", 0.1}});
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("session"), std::string::npos) << refused.error().message;
+}
+
+TEST_F(Parol6DriverTest, GripperAndOutputsReachTheBoard) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  ASSERT_TRUE(driver_.call("output", {{"out1", true}}));
+  ASSERT_TRUE(driver_.call("gripper_calibrate", nullptr));
+  // Like the commander's Gripper_cal(): wait for the calibration before the first move (a data
+  // pack that reaches the gripper while it calibrates is not acted on, and the board sends a
+  // data pack only when a field changes).
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop&) {
+    const auto gripper = driver_.call("gripper_state", nullptr);
+    return gripper && gripper.value()["answered"].get<bool>() && gripper.value()["calibrated"].get<bool>();
+  }));
+  ASSERT_TRUE(driver_.call("gripper", {{"position", 200}, {"speed", 255}, {"current_a", 0.5}}));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop&) {
+    const auto io = driver_.call("io", nullptr);
+    return io && io.value()["out1"].get<bool>();
+  }));
+  EXPECT_TRUE(loop.wait_for(
+      [&](DriverLoop&) {
+        const auto gripper = driver_.call("gripper_state", nullptr);
+        return gripper && gripper.value()["position"].get<int>() >= 195;
+      },
+      10s))
+      << driver_.call("gripper_state", nullptr).value().dump() << sim_.control({{"op", "state"}})["gripper"].dump();
+  const auto bad = driver_.call("gripper", {{"position", 300}});
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("args.position"), std::string::npos) << bad.error().message;
+}
+
+TEST_F(Parol6DriverTest, ALostByteCostsOneFrameNotTheLink) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  std::this_thread::sleep_for(100ms);
+  ASSERT_TRUE(sim_.control({{"op", "garbage"}, {"bytes", 300}})["ok"].get<bool>());
+  std::this_thread::sleep_for(300ms);
+  EXPECT_NE(loop.last_read(), IoResult::kDisconnected) << loop.fault_text();
+  const auto state = driver_.call("state", nullptr);
+  ASSERT_TRUE(state);
+  EXPECT_GT(state.value()["bytes_discarded"].get<std::uint64_t>(), 0U) << state.value().dump();
+}
+
+TEST_F(Parol6DriverTest, SilentBoardIsALostLinkAndRecoverReconnects) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 1500}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  EXPECT_NE(loop.fault_text().find("no reply from the board"), std::string::npos) << loop.fault_text();
+  std::this_thread::sleep_for(1600ms);
+  const auto back = loop.paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+}
+
+TEST_F(Parol6DriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_);
+  sim_.kill_hard();
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  const auto gone = loop.paused([&] { return driver_.recover(); });
+  EXPECT_FALSE(gone);
+  sim_.restart();
+  const auto back = loop.paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+}
+
+TEST_F(Parol6DriverTest, DisconnectLeavesTheBoardIdle) {
+  ASSERT_TRUE(driver_.connect());
+  {
+    DriverLoop loop(driver_);
+    JointVector target = standby_rad();
+    target[0] += 0.05;
+    loop.set_command(positions(target));
+    std::this_thread::sleep_for(200ms);
+  }
+  driver_.disconnect();
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(sim_.control({{"op", "state"}})["command"], 255) << "the last frame must not keep anything moving";
+}
+
+}  // namespace
+}  // namespace robotd::parol6
