@@ -1,5 +1,6 @@
 // The PAROL6 driver end to end: robotd loads the parol6 plugin, which talks to
 // robotd-parol6-sim over a pseudo-terminal; a client drives it through DDS.
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -15,7 +16,7 @@ namespace {
 using namespace std::chrono_literals;
 
 // Standby after homing (spec §10.3): 90°, −90°, 180°, 0°, 0°, 180°.
-const std::vector<float> kStandby{1.5708F, -1.5708F, 3.1416F, 0.0F, 0.0F, 3.1416F};
+constexpr std::array<float, 6> kStandby{1.5708F, -1.5708F, 3.1416F, 0.0F, 0.0F, 3.1416F};
 
 class Parol6Test : public RobotdTest {
  protected:
@@ -69,7 +70,7 @@ TEST_F(Parol6Test, SessionMovesTheArmAndBoardOpsAnswer) {
   Session session = acquire();
   // Two seconds of 1 kHz commands: a slow wave on J1 and J4, then a hold.
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<float> target = kStandby;
+  std::vector<float> target(kStandby.begin(), kStandby.end());
   for (auto next = t0; std::chrono::steady_clock::now() - t0 < 2s; next += 1ms) {
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     target[0] = kStandby[0] + static_cast<float>(0.3 * std::sin(M_PI * t / 2));
@@ -146,7 +147,7 @@ TEST_F(Parol6Test, ATimedOutSessionLeavesTheBoardIdleNeverJogging) {
   start(/*with_sim_arm=*/false);
   {
     Session session = acquire({}, 300ms);
-    std::vector<float> target = kStandby;
+    std::vector<float> target(kStandby.begin(), kStandby.end());
     target[5] -= 0.5F;
     ASSERT_TRUE(session.send_positions(target));
     std::this_thread::sleep_for(100ms);
