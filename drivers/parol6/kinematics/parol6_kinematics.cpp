@@ -3,15 +3,13 @@
 // Forward kinematics and the pose conversions use fixed-size Eigen only: no allocation.
 #include "parol6_kinematics.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
 
-#include <Eigen/Cholesky>
-
 #include "ik_solver.hpp"
+#include "robotd/kinematics/serial_chain.hpp"
 
 namespace robotd::parol6 {
 namespace {
@@ -36,11 +34,6 @@ constexpr std::array<DhRow, kJoints> kDh{{
     {.d_m = -62.80 * kMetresPerMm, .a_m = -45.25 * kMetresPerMm, .alpha_rad = kPi},
 }};
 
-/// frames[0] is the base; joint i turns about z of frames[i]; frames[6] is the tool.
-using Frames = std::array<Eigen::Isometry3d, kJoints + 1>;
-using Jacobian = Eigen::Matrix<double, 6, kJoints>;
-using Twist = Eigen::Matrix<double, 6, 1>;  // position (m), then rotation vector (rad)
-
 Eigen::Isometry3d link_transform(const DhRow& row, double theta_rad) {
   const double ct = std::cos(theta_rad);
   const double st = std::sin(theta_rad);
@@ -52,53 +45,12 @@ Eigen::Isometry3d link_transform(const DhRow& row, double theta_rad) {
   return link;
 }
 
-Frames joint_frames(const JointVector& q_rad) {
-  Frames frames;
+/// frames[0] is the base; joint i turns about z of frames[i]; frames[6] is the tool.
+kinematics::ChainFrames joint_frames(const JointVector& q_rad) {
+  kinematics::ChainFrames frames;
   frames[0] = Eigen::Isometry3d::Identity();
   for (std::size_t i = 0; i < kDh.size(); ++i) frames[i + 1] = frames[i] * link_transform(kDh[i], q_rad[i]);
   return frames;
-}
-
-/// Column i: joint i's axis z_i through o_i moves the tool by z_i × (tip − o_i) and turns it about z_i.
-Jacobian geometric_jacobian(const Frames& frames) {
-  const Eigen::Vector3d tip = frames.back().translation();
-  Jacobian jacobian;
-  for (std::size_t i = 0; i < kDh.size(); ++i) {
-    const Eigen::Vector3d axis = frames[i].linear().col(2);
-    const auto column = static_cast<Eigen::Index>(i);
-    jacobian.block<3, 1>(0, column) = axis.cross(tip - frames[i].translation());
-    jacobian.block<3, 1>(3, column) = axis;
-  }
-  return jacobian;
-}
-
-/// The twist that takes `current` onto `goal`, in the base frame.
-Twist pose_error(const Eigen::Isometry3d& goal, const Eigen::Isometry3d& current) {
-  const Eigen::AngleAxisd rotation(goal.linear() * current.linear().transpose());
-  Twist error;
-  error.head<3>() = goal.translation() - current.translation();
-  error.tail<3>() = rotation.angle() * rotation.axis();
-  return error;
-}
-
-bool converged(const Twist& error) {
-  constexpr double kPositionToleranceM = 1e-4;
-  constexpr double kOrientationToleranceRad = 1e-3;
-  return error.head<3>().norm() < kPositionToleranceM && error.tail<3>().norm() < kOrientationToleranceRad;
-}
-
-/// Where the solver stops: far below the convergence tolerance, so that a Cartesian path lies on
-/// its line to well under a micrometre, not merely within 0.1 mm.
-bool polished(const Twist& error) {
-  constexpr double kPositionM = 1e-10;
-  constexpr double kOrientationRad = 1e-10;
-  return error.head<3>().norm() < kPositionM && error.tail<3>().norm() < kOrientationRad;
-}
-
-JointVector clamped(const JointVector& q, const JointVector& min_rad, const JointVector& max_rad) {
-  JointVector out{};
-  for (std::size_t i = 0; i < q.size(); ++i) out[i] = std::max(min_rad[i], std::min(q[i], max_rad[i]));
-  return out;
 }
 
 }  // namespace
@@ -148,60 +100,21 @@ IkResult inverse_kinematics(const Pose& target, const JointVector& seed, const J
 
 IkResult detail::solve_ik(const Eigen::Isometry3d& goal, const JointVector& seed, const JointVector& min_rad,
                           const JointVector& max_rad) {
-  constexpr int kMaxIterations = 300;
-  // Consecutive refused steps after which the search is stuck (the damping has grown 10^12-fold):
-  // at the solution's numerical floor, in a local minimum, or against the limits.
-  constexpr int kMaxRefusals = 12;
-  // λ² of the damped step: shrinks after a step that lowers the error, grows after one that does not.
-  constexpr double kInitialDamping = 1e-3;
-  constexpr double kMinDamping = 1e-9;
-  constexpr double kMaxDamping = 1e6;
-
-  JointVector q = clamped(seed, min_rad, max_rad);
-  Frames frames = joint_frames(q);
-  Twist error = pose_error(goal, frames.back());
-  double damping = kInitialDamping;
-  int refusals = 0;
-  for (int iteration = 0; iteration < kMaxIterations && refusals < kMaxRefusals && !polished(error); ++iteration) {
-    Jacobian jacobian = geometric_jacobian(frames);
-    Eigen::Matrix<double, kJoints, 1> step;
-    // A joint held at a limit by the step is taken out of it and the step solved again, so the
-    // other joints get a direction they can actually follow.
-    for (int pass = 0; pass < kJoints; ++pass) {
-      const Eigen::Matrix<double, 6, 6> normal =
-          jacobian * jacobian.transpose() + damping * Eigen::Matrix<double, 6, 6>::Identity();
-      step = jacobian.transpose() * normal.ldlt().solve(error);
-      bool blocked = false;
-      for (std::size_t i = 0; i < q.size(); ++i) {
-        const auto joint = static_cast<Eigen::Index>(i);
-        const bool pushed_out = (q[i] <= min_rad[i] && step(joint) < 0) || (q[i] >= max_rad[i] && step(joint) > 0);
-        if (pushed_out) {
-          jacobian.col(joint).setZero();
-          blocked = true;
-        }
-      }
-      if (!blocked) break;
-    }
-    JointVector candidate{};
-    for (std::size_t i = 0; i < q.size(); ++i) candidate[i] = q[i] + step(static_cast<Eigen::Index>(i));
-    candidate = clamped(candidate, min_rad, max_rad);
-    const Frames candidate_frames = joint_frames(candidate);
-    const Twist candidate_error = pose_error(goal, candidate_frames.back());
-    if (candidate_error.squaredNorm() < error.squaredNorm()) {
-      q = candidate;
-      frames = candidate_frames;
-      error = candidate_error;
-      damping = std::max(damping * 0.3, kMinDamping);
-      refusals = 0;
-    } else {
-      damping = std::min(damping * 10.0, kMaxDamping);
-      ++refusals;
-    }
-  }
-  return IkResult{.converged = converged(error),
-                  .q_rad = q,
-                  .position_error_m = error.head<3>().norm(),
-                  .orientation_error_rad = error.tail<3>().norm()};
+  // The search goes on far below the convergence tolerance (it stops once stuck, after 12 refused
+  // steps), so that a Cartesian path lies on its line to well under a micrometre, not merely
+  // within 0.1 mm.
+  constexpr kinematics::DlsOptions kPolish{
+      .max_iterations = 300, .max_refusals = 12, .stop_position_m = 1e-10, .stop_orientation_rad = 1e-10};
+  constexpr double kConvergedPositionM = 1e-4;
+  constexpr double kConvergedOrientationRad = 1e-3;
+  const kinematics::DlsResult solved = kinematics::solve_dls(goal, seed, min_rad, max_rad, joint_frames, kPolish);
+  const double position_error_m = solved.error.head<3>().norm();
+  const double orientation_error_rad = solved.error.tail<3>().norm();
+  return IkResult{
+      .converged = position_error_m < kConvergedPositionM && orientation_error_rad < kConvergedOrientationRad,
+      .q_rad = solved.q_rad,
+      .position_error_m = position_error_m,
+      .orientation_error_rad = orientation_error_rad};
 }
 
 }  // namespace robotd::parol6

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <numbers>
 
+#include "robotd/kinematics/serial_chain.hpp"
+
 namespace robotd::piper {
 namespace {
 
@@ -33,9 +35,8 @@ constexpr std::array<DhRow, kArmJoints> kDh{{
 constexpr std::array<double, kArmJoints> kOffsetTheta{0, radians(-172.22), radians(-102.78), 0, 0, 0};
 constexpr std::array<double, kArmJoints> kPlainTheta{0, radians(-174.22), radians(-100.78), 0, 0, 0};
 
-using Frames = std::array<Eigen::Isometry3d, kArmJoints>;  // joint frame i in the base frame
-using Jacobian = Eigen::Matrix<double, 6, kArmJoints>;
-using Twist = Eigen::Matrix<double, 6, 1>;  // position (m), then rotation vector (rad)
+using kinematics::ChainFrames;
+using kinematics::Twist;
 
 Eigen::Isometry3d link_transform(const DhRow& row, double theta_rad) {
   const double ca = std::cos(row.alpha_rad);
@@ -48,37 +49,17 @@ Eigen::Isometry3d link_transform(const DhRow& row, double theta_rad) {
   return link;
 }
 
-Frames joint_frames(const std::array<double, kArmJoints>& q_rad, DhVariant variant) {
+/// Joint i turns about z of frame i (the modified-DH frame after link i); the tip is frame 6.
+ChainFrames joint_frames(const std::array<double, kArmJoints>& q_rad, DhVariant variant) {
   const auto& theta = variant == DhVariant::kOffset ? kOffsetTheta : kPlainTheta;
-  Frames frames;
+  ChainFrames frames;
   Eigen::Isometry3d base_to_link = Eigen::Isometry3d::Identity();
   for (std::size_t i = 0; i < kDh.size(); ++i) {
     base_to_link = base_to_link * link_transform(kDh[i], q_rad[i] + theta[i]);
     frames[i] = base_to_link;
   }
+  frames[kArmJoints] = base_to_link;  // the flange is joint 6's frame
   return frames;
-}
-
-/// Joint i turns about z of frame i: column i is (z × (tip − origin), z).
-Jacobian geometric_jacobian(const Frames& frames) {
-  const Eigen::Vector3d tip = frames.back().translation();
-  Jacobian jacobian;
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const Eigen::Vector3d axis = frames[i].linear().col(2);
-    const auto column = static_cast<Eigen::Index>(i);
-    jacobian.block<3, 1>(0, column) = axis.cross(tip - frames[i].translation());
-    jacobian.block<3, 1>(3, column) = axis;
-  }
-  return jacobian;
-}
-
-/// What moves `current` onto `target`, in the base frame.
-Twist pose_error(const Eigen::Isometry3d& target, const Eigen::Isometry3d& current) {
-  const Eigen::AngleAxisd rotation(target.linear() * current.linear().transpose());
-  Twist error;
-  error.head<3>() = target.translation() - current.translation();
-  error.tail<3>() = rotation.angle() * rotation.axis();
-  return error;
 }
 
 Eigen::Quaterniond rotation_of(const CartesianPose& pose) {
@@ -138,58 +119,14 @@ std::array<double, 4> quaternion_xyzw(const CartesianPose& pose) noexcept {
 IkResult inverse_kinematics(const CartesianPose& target, const std::array<double, kArmJoints>& seed_rad,
                             DhVariant variant, const std::array<double, kArmJoints>& min_rad,
                             const std::array<double, kArmJoints>& max_rad) {
-  constexpr int kMaxIterations = 200;
-  // λ² of the damped step: shrinks after a step that lowers the error, grows after one that does not.
-  constexpr double kInitialDamping = 1e-3;
-  constexpr double kMinDamping = 1e-9;
-  constexpr double kMaxDamping = 1e6;
-
-  const Eigen::Isometry3d goal = transform_of(target);
-  std::array<double, kArmJoints> q{};
-  for (std::size_t i = 0; i < q.size(); ++i) q[i] = std::max(min_rad[i], std::min(seed_rad[i], max_rad[i]));
-  Frames frames = joint_frames(q, variant);
-  Twist error = pose_error(goal, frames.back());
-  double damping = kInitialDamping;
-  int iteration = 0;
-  for (; iteration < kMaxIterations && !within_tolerance(error); ++iteration) {
-    Jacobian jacobian = geometric_jacobian(frames);
-    Eigen::Matrix<double, kArmJoints, 1> step;
-    // A joint at a limit that the step pushes further out is taken out of the step, which is then
-    // solved again: clamping alone would leave the other joints a direction they cannot follow.
-    for (int pass = 0; pass < kArmJoints; ++pass) {
-      const Eigen::Matrix<double, 6, 6> normal =
-          jacobian * jacobian.transpose() + damping * Eigen::Matrix<double, 6, 6>::Identity();
-      step = jacobian.transpose() * normal.ldlt().solve(error);
-      bool blocked = false;
-      for (std::size_t i = 0; i < q.size(); ++i) {
-        const auto joint = static_cast<Eigen::Index>(i);
-        if ((q[i] <= min_rad[i] && step(joint) < 0) || (q[i] >= max_rad[i] && step(joint) > 0)) {
-          jacobian.col(joint).setZero();
-          blocked = true;
-        }
-      }
-      if (!blocked) break;
-    }
-    std::array<double, kArmJoints> candidate{};
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      candidate[i] = std::max(min_rad[i], std::min(q[i] + step(static_cast<Eigen::Index>(i)), max_rad[i]));
-    }
-    const Frames candidate_frames = joint_frames(candidate, variant);
-    const Twist candidate_error = pose_error(goal, candidate_frames.back());
-    if (candidate_error.squaredNorm() < error.squaredNorm()) {
-      q = candidate;
-      frames = candidate_frames;
-      error = candidate_error;
-      damping = std::max(damping * 0.3, kMinDamping);
-    } else {
-      damping = std::min(damping * 10.0, kMaxDamping);
-    }
-  }
-  return IkResult{.converged = within_tolerance(error),
-                  .q_rad = q,
-                  .position_error_m = error.head<3>().norm(),
-                  .orientation_error_rad = error.tail<3>().norm(),
-                  .iterations = iteration};
+  const kinematics::DlsResult solved = kinematics::solve_dls(
+      transform_of(target), seed_rad, min_rad, max_rad,
+      [variant](const kinematics::JointArray& q) { return joint_frames(q, variant); }, kinematics::DlsOptions{});
+  return IkResult{.converged = within_tolerance(solved.error),
+                  .q_rad = solved.q_rad,
+                  .position_error_m = solved.error.head<3>().norm(),
+                  .orientation_error_rad = solved.error.tail<3>().norm(),
+                  .iterations = solved.iterations};
 }
 
 }  // namespace robotd::piper
