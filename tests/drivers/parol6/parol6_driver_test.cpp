@@ -2,18 +2,17 @@
 // simulator process, and a 1 kHz thread that calls read()/write() the way robotd's loop does.
 #include "driver/parol6_driver.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
-#include <mutex>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "codec/joint_units.hpp"
+#include "driver_loop.hpp"
 #include "kinematics/parol6_kinematics.hpp"
 #include "parol6_sim_process.hpp"
 #include "robotd/driver/json_reader.hpp"
@@ -24,95 +23,8 @@ namespace {
 using namespace std::chrono_literals;
 using driver::IoResult;
 using driver::JointCommandKind;
+using testing::DriverLoop;
 using testing::Parol6SimProcess;
-
-/// Calls read() and write() every millisecond like robotd's RT loop, with the command a test sets.
-class DriverLoop {
- public:
-  explicit DriverLoop(Parol6Driver& driver) : driver_(driver) {
-    command_.joint_count = kJoints;
-    thread_ = std::thread([this] { run(); });
-  }
-  DriverLoop(const DriverLoop&) = delete;
-  DriverLoop& operator=(const DriverLoop&) = delete;
-  ~DriverLoop() {
-    running_ = false;
-    thread_.join();
-  }
-
-  void set_command(const driver::CommandFrame& command) {
-    const std::lock_guard lock(mutex_);
-    command_ = command;
-  }
-  template <class Work>
-  auto paused(Work work) {
-    paused_ = true;
-    while (!idle_) std::this_thread::sleep_for(1ms);
-    auto result = work();
-    paused_ = false;
-    return result;
-  }
-  driver::Feedback feedback() {
-    const std::lock_guard lock(mutex_);
-    return feedback_;
-  }
-  IoResult last_read() { return last_read_.load(); }
-  std::string fault_text() {
-    const std::lock_guard lock(mutex_);
-    return fault_.text.data();
-  }
-  template <class Done>
-  bool wait_for(Done done, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done(*this)) return true;
-      std::this_thread::sleep_for(5ms);
-    }
-    return false;
-  }
-
- private:
-  void run() {
-    auto next = std::chrono::steady_clock::now();
-    while (running_) {
-      next += 1ms;
-      std::this_thread::sleep_until(next);
-      if (paused_) {
-        idle_ = true;
-        continue;
-      }
-      idle_ = false;
-      driver::Feedback feedback;
-      driver::FaultInfo fault;
-      const IoResult read = driver_.read(feedback, fault);
-      driver::CommandFrame command;
-      {
-        const std::lock_guard lock(mutex_);
-        command = command_;
-        if (read == IoResult::kOk) feedback_ = feedback;
-        if (fault.code != 0) fault_ = fault;
-      }
-      last_read_ = read;
-      if (read == IoResult::kDisconnected) continue;
-      command.tick_deadline_ns =
-          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-              .count();
-      driver::FaultInfo write_fault;
-      (void)driver_.write(command, write_fault);
-    }
-  }
-
-  Parol6Driver& driver_;
-  std::mutex mutex_;
-  driver::CommandFrame command_;
-  driver::Feedback feedback_;
-  driver::FaultInfo fault_;
-  std::atomic<IoResult> last_read_{IoResult::kNoNewData};
-  std::atomic<bool> paused_{false};
-  std::atomic<bool> idle_{false};
-  std::atomic<bool> running_{true};
-  std::thread thread_;
-};
 
 nlohmann::json driver_params(const std::string& pty) { return {{"serial", {{"device", pty}, {"baud", 3000000}}}}; }
 
@@ -192,7 +104,7 @@ TEST_F(Parol6DriverTest, ConnectFailsClearlyWithoutABoard) {
 
 TEST_F(Parol6DriverTest, StreamedPositionsMoveTheSteppersSmoothly) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   const JointVector start = standby_rad();
   ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
   // A 1 kHz ramp like robotd's limiter makes: 0.3 rad on J1 over 1 s.
@@ -222,7 +134,7 @@ TEST_F(Parol6DriverTest, StreamedPositionsMoveTheSteppersSmoothly) {
 
 TEST_F(Parol6DriverTest, WithoutASessionTheBoardIsLeftIdle) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   loop.set_command(positions(standby_rad(), /*owned=*/false));
   std::this_thread::sleep_for(100ms);
   const nlohmann::json state = sim_.control({{"op", "state"}});
@@ -231,7 +143,7 @@ TEST_F(Parol6DriverTest, WithoutASessionTheBoardIsLeftIdle) {
 
 TEST_F(Parol6DriverTest, EstopInputIsReportedAndDisablesTheBoard) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   loop.set_command(positions(standby_rad()));
   ASSERT_TRUE(sim_.control({{"op", "estop"}, {"pressed", true}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().estop_input; }));
@@ -244,7 +156,7 @@ TEST_F(Parol6DriverTest, EstopInputIsReportedAndDisablesTheBoard) {
 
 TEST_F(Parol6DriverTest, HomeRunsTheBoardsSequence) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   const auto homed = driver_.call("home", {{"wait", true}});
   ASSERT_TRUE(homed) << homed.error().message;
   EXPECT_TRUE(homed.value()["homed"].get<bool>());
@@ -253,7 +165,7 @@ TEST_F(Parol6DriverTest, HomeRunsTheBoardsSequence) {
 
 TEST_F(Parol6DriverTest, JogAndMovesRunAndStopAtTheirEnd) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   const JointVector start = standby_rad();
   ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
   const auto jog = driver_.call("jog", {{"joint", 4}, {"velocity_rad_s", 0.5}, {"duration_s", 0.4}});
@@ -285,7 +197,7 @@ TEST_F(Parol6DriverTest, JogAndMovesRunAndStopAtTheirEnd) {
 
 TEST_F(Parol6DriverTest, MovePoseReachesThePoseWithEitherProfile) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   const JointVector start = standby_rad();
   ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
   JointVector elsewhere = start;
@@ -320,7 +232,7 @@ TEST_F(Parol6DriverTest, MovePoseReachesThePoseWithEitherProfile) {
 
 TEST_F(Parol6DriverTest, MovesAreRefusedWhileASessionDrives) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   loop.set_command(positions(standby_rad()));
   std::this_thread::sleep_for(50ms);
   const auto refused = driver_.call("jog", {{"joint", 1}, {"velocity_rad_s", 0.1}});
@@ -330,7 +242,7 @@ TEST_F(Parol6DriverTest, MovesAreRefusedWhileASessionDrives) {
 
 TEST_F(Parol6DriverTest, GripperAndOutputsReachTheBoard) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   ASSERT_TRUE(driver_.call("output", {{"out1", true}}));
   ASSERT_TRUE(driver_.call("gripper_calibrate", nullptr));
   // Like the commander's Gripper_cal(): wait for the calibration before the first move (a data
@@ -359,7 +271,7 @@ TEST_F(Parol6DriverTest, GripperAndOutputsReachTheBoard) {
 
 TEST_F(Parol6DriverTest, ALostByteCostsOneFrameNotTheLink) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   std::this_thread::sleep_for(100ms);
   ASSERT_TRUE(sim_.control({{"op", "garbage"}, {"bytes", 300}})["ok"].get<bool>());
   std::this_thread::sleep_for(300ms);
@@ -371,7 +283,7 @@ TEST_F(Parol6DriverTest, ALostByteCostsOneFrameNotTheLink) {
 
 TEST_F(Parol6DriverTest, SilentBoardIsALostLinkAndRecoverReconnects) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 1500}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
   EXPECT_NE(loop.fault_text().find("no reply from the board"), std::string::npos) << loop.fault_text();
@@ -383,7 +295,7 @@ TEST_F(Parol6DriverTest, SilentBoardIsALostLinkAndRecoverReconnects) {
 
 TEST_F(Parol6DriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kJoints);
   sim_.kill_hard();
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
   const auto gone = loop.paused([&] { return driver_.recover(); });
@@ -397,7 +309,7 @@ TEST_F(Parol6DriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
 TEST_F(Parol6DriverTest, DisconnectLeavesTheBoardIdle) {
   ASSERT_TRUE(driver_.connect());
   {
-    DriverLoop loop(driver_);
+    DriverLoop loop(driver_, kJoints);
     JointVector target = standby_rad();
     target[0] += 0.05;
     loop.set_command(positions(target));

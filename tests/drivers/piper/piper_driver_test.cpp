@@ -2,17 +2,16 @@
 // simulator process, and a 1 kHz thread that calls read()/write() the way robotd's loop does.
 #include "driver/piper_driver.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iterator>
-#include <mutex>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "driver/piper_ops.hpp"
+#include "driver_loop.hpp"
 #include "kinematics/piper_kinematics.hpp"
 #include "piper_sim_process.hpp"
 
@@ -22,103 +21,8 @@ namespace {
 using namespace std::chrono_literals;
 using driver::IoResult;
 using driver::JointCommandKind;
+using testing::DriverLoop;
 using testing::PiperSimProcess;
-
-/// Calls read() and write() every millisecond like robotd's RT loop, with the command a test sets.
-class DriverLoop {
- public:
-  explicit DriverLoop(PiperDriver& driver) : driver_(driver) {
-    command_.joint_count = 7;
-    thread_ = std::thread([this] { run(); });
-  }
-  DriverLoop(const DriverLoop&) = delete;
-  DriverLoop& operator=(const DriverLoop&) = delete;
-  ~DriverLoop() {
-    running_ = false;
-    thread_.join();
-  }
-
-  void set_command(const driver::CommandFrame& command) {
-    const std::lock_guard lock(mutex_);
-    command_ = command;
-  }
-  /// Pauses the calls (as robotd does for recover()) while `work` runs.
-  template <class Work>
-  auto paused(Work work) {
-    paused_ = true;
-    while (!idle_) std::this_thread::sleep_for(1ms);
-    auto result = work();
-    paused_ = false;
-    return result;
-  }
-  driver::Feedback feedback() {
-    const std::lock_guard lock(mutex_);
-    return feedback_;
-  }
-  IoResult last_read() { return last_read_.load(); }
-  IoResult last_write() { return last_write_.load(); }
-  std::string fault_text() {
-    const std::lock_guard lock(mutex_);
-    return fault_.text.data();
-  }
-  /// Waits until `done(feedback)` or the timeout.
-  template <class Done>
-  bool wait_for(Done done, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done(*this)) return true;
-      std::this_thread::sleep_for(5ms);
-    }
-    return false;
-  }
-
- private:
-  void run() {
-    auto next = std::chrono::steady_clock::now();
-    while (running_) {
-      next += 1ms;
-      std::this_thread::sleep_until(next);
-      if (paused_) {
-        idle_ = true;
-        continue;
-      }
-      idle_ = false;
-      driver::Feedback feedback;
-      driver::FaultInfo fault;
-      const IoResult read = driver_.read(feedback, fault);
-      driver::CommandFrame command;
-      {
-        const std::lock_guard lock(mutex_);
-        command = command_;
-        if (read == IoResult::kOk) feedback_ = feedback;
-        if (fault.code != 0) fault_ = fault;
-      }
-      last_read_ = read;
-      if (read == IoResult::kDisconnected) continue;
-      command.tick_deadline_ns =
-          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-              .count();
-      driver::FaultInfo write_fault;
-      last_write_ = driver_.write(command, write_fault);
-      if (write_fault.code != 0) {
-        const std::lock_guard lock(mutex_);
-        fault_ = write_fault;
-      }
-    }
-  }
-
-  PiperDriver& driver_;
-  std::mutex mutex_;
-  driver::CommandFrame command_;
-  driver::Feedback feedback_;
-  driver::FaultInfo fault_;
-  std::atomic<IoResult> last_read_{IoResult::kNoNewData};
-  std::atomic<IoResult> last_write_{IoResult::kOk};
-  std::atomic<bool> paused_{false};
-  std::atomic<bool> idle_{false};
-  std::atomic<bool> running_{true};
-  std::thread thread_;
-};
 
 nlohmann::json driver_params(const std::string& bus_path, const nlohmann::json& extra = nlohmann::json::object()) {
   nlohmann::json params{{"can", {{"transport", "standin"}, {"path", bus_path}}}, {"feedback_timeout_ms", 100}};
@@ -126,9 +30,11 @@ nlohmann::json driver_params(const std::string& bus_path, const nlohmann::json& 
   return params;
 }
 
+constexpr std::size_t kDeviceJoints = 7;  // six arm joints and the gripper
+
 driver::CommandFrame positions(const std::array<double, 6>& q, bool owned = true) {
   driver::CommandFrame frame;
-  frame.joint_count = 7;
+  frame.joint_count = kDeviceJoints;
   for (std::size_t j = 0; j < 6; ++j)
     frame.joints[j] = {.kind = JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
   return frame;
@@ -217,7 +123,7 @@ TEST(PiperConfigs, ShippedExamplesAndTheDefaultConfigParse) {
 
 TEST_F(PiperDriverTest, StreamedPositionsEnableTheArmAndMoveIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   const std::array<double, 6> target{0.3, 0.4, -0.5, 0.2, -0.3, 0.6};
   loop.set_command(positions(target));
   EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) {
@@ -240,7 +146,7 @@ TEST_F(PiperDriverTest, StreamedPositionsEnableTheArmAndMoveIt) {
 
 TEST_F(PiperDriverTest, ImpedanceCommandsDriveTheArmInMitMode) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   driver::CommandFrame frame = positions({0, 0, 0, 0, 0, 0});
   frame.joints[5] = {.kind = JointCommandKind::kImpedance, .owned = true, .position_rad = 0.5, .kp = 10, .kd = 0.8};
   loop.set_command(frame);
@@ -252,7 +158,7 @@ TEST_F(PiperDriverTest, ImpedanceCommandsDriveTheArmInMitMode) {
 
 TEST_F(PiperDriverTest, EstopStopsTheArmAndResetResumesIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   loop.set_command(positions({0.2, 0.2, -0.2, 0, 0, 0}));
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[0].position_rad - 0.2) < 0.01; }));
   driver::CommandFrame stopped = positions({0.2, 0.2, -0.2, 0, 0, 0});
@@ -269,7 +175,7 @@ TEST_F(PiperDriverTest, EstopStopsTheArmAndResetResumesIt) {
 
 TEST_F(PiperDriverTest, ArmFaultIsReportedWithItsTextAndRecoverClearsIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   loop.set_command(positions({0, 0, 0, 0, 0, 0}));
   ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"arm_status", 7}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
@@ -284,7 +190,7 @@ TEST_F(PiperDriverTest, ArmFaultIsReportedWithItsTextAndRecoverClearsIt) {
 
 TEST_F(PiperDriverTest, DriverFaultBitsNameTheJointAndTheProblem) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   loop.set_command(positions({0, 0, 0, 0, 0, 0}));
   ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"joint", 3}, {"driver_status_bits", 0x04}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
@@ -294,7 +200,7 @@ TEST_F(PiperDriverTest, DriverFaultBitsNameTheJointAndTheProblem) {
 
 TEST_F(PiperDriverTest, SilentArmIsALostLinkAndRecoverWaitsForItsReturn) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   const auto silent_until = std::chrono::steady_clock::now() + 2s;
   ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 2000}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
@@ -310,7 +216,7 @@ TEST_F(PiperDriverTest, SilentArmIsALostLinkAndRecoverWaitsForItsReturn) {
 
 TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   sim_.kill_hard();
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
   EXPECT_NE(loop.fault_text().find("CAN link closed"), std::string::npos) << loop.fault_text();
@@ -325,7 +231,7 @@ TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
 
 TEST_F(PiperDriverTest, CanBusErrorIsAFaultThatNamesTheError) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   ASSERT_TRUE(sim_.control({{"op", "bus_error"}})["ok"].get<bool>());
   // One kFault read: robotd's loop latches it (the test loop keeps its text).
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.fault_text().find("CAN bus error") != std::string::npos; }))
@@ -336,7 +242,7 @@ TEST_F(PiperDriverTest, CanBusErrorIsAFaultThatNamesTheError) {
 
 TEST_F(PiperDriverTest, GarbageOnTheBusIsCountedNotFatal) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   ASSERT_TRUE(sim_.control({{"op", "garbage"}, {"frames", 500}})["ok"].get<bool>());
   std::this_thread::sleep_for(200ms);
   EXPECT_NE(loop.last_read(), IoResult::kDisconnected);
@@ -347,7 +253,7 @@ TEST_F(PiperDriverTest, GarbageOnTheBusIsCountedNotFatal) {
 
 TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   const auto limits = driver_.call("limits", nullptr);
   ASSERT_TRUE(limits) << limits.error().message;
   ASSERT_EQ(limits.value()["joints"].size(), 6U) << limits.value().dump();
@@ -368,7 +274,7 @@ TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
 
 TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   const auto crash = driver_.call("set_crash_protection", {{"levels", {1, 2, 3, 4, 5, 6}}});
   ASSERT_TRUE(crash) << crash.error().message;
   const auto levels = driver_.call("crash_protection", nullptr);
@@ -397,7 +303,7 @@ TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
 
 TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   const auto bad_joint = driver_.call("set_max_acc", {{"joint", 9}, {"max_acc_rad_s2", 1}});
   ASSERT_FALSE(bad_joint);
   EXPECT_EQ(bad_joint.error().code, ErrorCode::kInvalidArgument);
@@ -416,7 +322,7 @@ TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
 
 TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   const CartesianPose target = forward_kinematics({0.2, 0.6, -0.8, 0.1, 0.3, 0.2}, DhVariant::kOffset);
   nlohmann::json args = to_json(target);
   ASSERT_TRUE(driver_.call("enable", nullptr));
@@ -441,7 +347,7 @@ TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
 
 TEST_F(PiperDriverTest, GripperFollowsItsJointAndItsOp) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_);
+  DriverLoop loop(driver_, kDeviceJoints);
   driver::CommandFrame frame = positions({0, 0, 0, 0, 0, 0});
   frame.joints[6] = {.kind = JointCommandKind::kPosition, .owned = true, .position_rad = 0.03};
   loop.set_command(frame);

@@ -1,0 +1,75 @@
+#include "driver_loop.hpp"
+
+namespace robotd::testing {
+
+using namespace std::chrono_literals;
+using driver::IoResult;
+
+DriverLoop::DriverLoop(driver::Driver& driver, std::size_t joint_count) : driver_(driver) {
+  command_.joint_count = joint_count;
+  thread_ = std::thread([this] { run(); });
+}
+
+DriverLoop::~DriverLoop() {
+  running_ = false;
+  thread_.join();
+}
+
+void DriverLoop::set_command(const driver::CommandFrame& command) {
+  const std::lock_guard lock(mutex_);
+  command_ = command;
+}
+
+void DriverLoop::pause() {
+  paused_ = true;
+  while (!idle_) std::this_thread::sleep_for(1ms);
+}
+
+driver::Feedback DriverLoop::feedback() {
+  const std::lock_guard lock(mutex_);
+  return feedback_;
+}
+
+std::string DriverLoop::fault_text() {
+  const std::lock_guard lock(mutex_);
+  return fault_.text.data();
+}
+
+void DriverLoop::run() {
+  auto next = std::chrono::steady_clock::now();
+  while (running_) {
+    next += 1ms;
+    std::this_thread::sleep_until(next);
+    if (paused_) {
+      idle_ = true;
+      continue;
+    }
+    idle_ = false;
+    tick();
+  }
+}
+
+void DriverLoop::tick() {
+  driver::Feedback feedback;
+  driver::FaultInfo fault;
+  const IoResult read = driver_.read(feedback, fault);
+  driver::CommandFrame command;
+  {
+    const std::lock_guard lock(mutex_);
+    command = command_;
+    if (read == IoResult::kOk) feedback_ = feedback;
+    if (fault.code != 0) fault_ = fault;
+  }
+  last_read_ = read;
+  if (read == IoResult::kDisconnected) return;
+  command.tick_deadline_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  driver::FaultInfo write_fault;
+  last_write_ = driver_.write(command, write_fault);
+  if (write_fault.code != 0) {
+    const std::lock_guard lock(mutex_);
+    fault_ = write_fault;
+  }
+}
+
+}  // namespace robotd::testing
