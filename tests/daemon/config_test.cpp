@@ -48,7 +48,7 @@ std::size_t count_lines_starting_with(const std::string& text, const std::string
 TEST(Config, ShippedConfigParsesWithItsSimulatedDevicesOnLoopback) {
   const Result<Config> config = load_config_file(ROBOTD_SOURCE_DIR "/config/robotd.json");
   ASSERT_TRUE(config.ok()) << config.error().message;
-  ASSERT_EQ(config.value().devices.size(), 4u);
+  ASSERT_EQ(config.value().devices.size(), 5u);
   EXPECT_EQ(config.value().devices[0].name, "arm");
   EXPECT_EQ(config.value().devices[1].name, "humanoid");
   EXPECT_EQ(config.value().devices[0].driver, "sim");
@@ -57,6 +57,8 @@ TEST(Config, ShippedConfigParsesWithItsSimulatedDevicesOnLoopback) {
   EXPECT_FALSE(config.value().devices[2].required) << "the demo runs without the PiPER simulator too";
   EXPECT_EQ(config.value().devices[3].driver, "parol6");
   EXPECT_FALSE(config.value().devices[3].required);
+  EXPECT_EQ(config.value().devices[4].driver, "realman");
+  EXPECT_FALSE(config.value().devices[4].required);
   EXPECT_EQ(config.value().dds.network_interface, "127.0.0.1");
   EXPECT_FALSE(config.value().dds.multicast);
   EXPECT_EQ(config.value().devices[0].params["joint_count"], 6);
@@ -68,6 +70,8 @@ TEST(Config, AbsentKeysTakeTheDocumentedDefaults) {
   const DeviceConfig& device = config.value().devices.at(0);
   EXPECT_EQ(device.path, "devices[0]");
   EXPECT_TRUE(device.required);
+  EXPECT_EQ(device.reconnect_interval_ms, 1000);
+  EXPECT_EQ(device.reconnect_max_interval_ms, 5000);
   EXPECT_EQ(device.rate_hz, 1000);
   EXPECT_EQ(device.rt_priority, 80);
   EXPECT_EQ(device.cpu, -1);

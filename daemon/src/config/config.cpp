@@ -111,6 +111,8 @@ DeviceConfig read_device(JsonReader& reader, int cpu_count) {
       static_cast<int>(reader.integer_or("feedback_timeout_ms", device.feedback_timeout_ms, 1, 60'000));
   device.reconnect_interval_ms =
       static_cast<int>(reader.integer_or("reconnect_interval_ms", device.reconnect_interval_ms, 0, 600'000));
+  device.reconnect_max_interval_ms =
+      static_cast<int>(reader.integer_or("reconnect_max_interval_ms", device.reconnect_max_interval_ms, 0, 3'600'000));
   device.joint_state_rate_hz =
       static_cast<int>(reader.integer_or("joint_state_rate_hz", device.joint_state_rate_hz, 0, 10'000));
   device.end_pose_rate_hz = static_cast<int>(reader.integer_or("end_pose_rate_hz", device.end_pose_rate_hz, 0, 1000));

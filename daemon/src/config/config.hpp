@@ -45,9 +45,10 @@ struct DeviceConfig {
   Behavior shutdown_behavior = Behavior::kDamping;  // when robotd stops
   int shutdown_ms = 300;
   int feedback_timeout_ms = 100;
-  int reconnect_interval_ms = 1000;  // after a lost link, try recover() this often; 0 = only by hand
-  int joint_state_rate_hz = 0;       // 0 = rate_hz
-  int end_pose_rate_hz = 50;         // /end_pose for devices whose driver reports one; 0 = off
+  int reconnect_interval_ms = 1000;      // after a lost link, first try recover() after this; 0 = only by hand
+  int reconnect_max_interval_ms = 5000;  // then at doubling intervals up to this
+  int joint_state_rate_hz = 0;           // 0 = rate_hz
+  int end_pose_rate_hz = 50;             // /end_pose for devices whose driver reports one; 0 = off
   nlohmann::json params = nlohmann::json::object();
 };
 

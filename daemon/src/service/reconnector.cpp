@@ -1,5 +1,7 @@
 #include "service/reconnector.hpp"
 
+#include <algorithm>
+
 #include <spdlog/spdlog.h>
 
 namespace robotd::service {
@@ -55,11 +57,16 @@ void Reconnector::try_device(std::size_t index, std::chrono::steady_clock::time_
   }
   const std::string& name = device.model().name;
   if (!attempts.lost) {
-    attempts = Attempts{now, now, now, true};
-    spdlog::warn("device '{}': link lost ({}); reconnecting every {} ms", name, state.fault.text.data(), interval_ms);
+    attempts = Attempts{now, now, now, std::chrono::milliseconds(interval_ms), true};
+    spdlog::warn("device '{}': link lost ({}); reconnecting after {} ms, backing off to every {} ms", name,
+                 state.fault.text.data(), interval_ms,
+                 std::max(interval_ms, device.config().reconnect_max_interval_ms));
   }
   if (now < attempts.next) return;
-  attempts.next = now + std::chrono::milliseconds(interval_ms);
+  attempts.next = now + attempts.delay;
+  // Back off (doubling) so an absent controller is not hammered, up to reconnect_max_interval_ms.
+  attempts.delay = std::min(
+      2 * attempts.delay, std::chrono::milliseconds(std::max(interval_ms, device.config().reconnect_max_interval_ms)));
   auto recovered =
       device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true, std::chrono::seconds(10));
 

@@ -1,6 +1,7 @@
 // Brings devices back after a lost link: while a device's latched fault is a lost link (its
 // driver reported kDisconnected: simulator gone, cable pulled, controller rebooting), try the
-// driver's recover() every reconnect_interval_ms, with the loop paused as for a manual recover.
+// driver's recover() after reconnect_interval_ms, then at doubling intervals up to
+// reconnect_max_interval_ms, with the loop paused as for a manual recover.
 // Once it succeeds the joints hold where they are measured. Faults the device itself reports
 // are left for a person to read and recover explicitly.
 #pragma once
@@ -31,6 +32,7 @@ class Reconnector {
     std::chrono::steady_clock::time_point next{};
     std::chrono::steady_clock::time_point lost_at{};
     std::chrono::steady_clock::time_point last_report{};
+    std::chrono::milliseconds delay{};  // before the attempt after next
     bool lost = false;
   };
   void run();
