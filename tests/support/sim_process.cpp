@@ -63,7 +63,7 @@ SimProcess::SimProcess(std::string program, const std::string& stem, const std::
 
 SimProcess::~SimProcess() {
   kill_hard();
-  unlink(link_path_.c_str());
+  if (link_path_.starts_with('/')) unlink(link_path_.c_str());  // a path, not a port number
   unlink(control_path_.c_str());
 }
 

@@ -1,7 +1,8 @@
-// A simulator executable run as a child process for tests: started with its link path (a
-// stand-in bus socket, a pty symlink) and a control channel, ready when it printed "ready";
-// asked to report or misbehave over that channel; killed and restarted on the same paths.
-// PiperSimProcess and Parol6SimProcess are this with their simulator's options.
+// A simulator executable run as a child process for tests: started with its link (a stand-in
+// bus socket or a pty symlink path, or a TCP port number) and a control channel, ready when it
+// printed "ready"; asked to report or misbehave over that channel; killed and restarted on the
+// same paths.
+// PiperSimProcess, Parol6SimProcess and RealmanSimProcess are this with their simulator's options.
 #pragma once
 
 #include <chrono>
@@ -20,7 +21,7 @@ class SimProcess {
  public:
   SimProcess(const SimProcess&) = delete;
   SimProcess& operator=(const SimProcess&) = delete;
-  /// Kills it (hard) and removes the link and control paths.
+  /// Kills it (hard) and removes the control path and the link path (if it is an absolute path).
   virtual ~SimProcess();
 
   /// One request, one reply over the control socket. Throws std::runtime_error when the
