@@ -21,45 +21,14 @@ constexpr std::array<float, 6> kStandby{1.5708F, -1.5708F, 3.1416F, 0.0F, 0.0F, 
 class Parol6Test : public RobotdTest {
  protected:
   void start(bool with_sim_arm, std::vector<std::string> environment = {}) {
-    nlohmann::json parol6{{"name", "parol6"},
-                          {"driver", "parol6"},
-                          {"rate_hz", 1000},
-                          {"realtime", "prefer"},
-                          {"safe_behavior", "KEEP"},
-                          {"shutdown_behavior", "KEEP"},
-                          {"reconnect_interval_ms", 200},
-                          {"params", {{"serial", {{"device", sim_.pty_path()}, {"baud", 3000000}}}}}};
-    nlohmann::json config = sim_arm_config(domain_.id());
-    if (with_sim_arm) {
-      config["devices"].push_back(parol6);
-    } else {
-      config["devices"] = nlohmann::json::array({parol6});
-    }
-    start_robotd(config, std::move(environment));
+    const nlohmann::json params{{"serial", {{"device", sim_.pty_path()}, {"baud", 3000000}}}};
+    start_with_device(vendor_device("parol6", params), with_sim_arm, std::move(environment));
   }
-
   Session acquire(std::vector<std::int32_t> motors = {}, std::chrono::milliseconds timeout = 10s) {
-    SessionRequest request;
-    request.device = "parol6";
-    request.motor_ids = std::move(motors);
-    request.on_timeout = Behavior::kKeep;
-    request.timeout = timeout;
-    auto session = client().request_control(request);
-    EXPECT_TRUE(session) << session.error().message;
-    return std::move(session.value());
+    return acquire_device("parol6", std::move(motors), ControlMode::kPosition, timeout);
   }
-
-  DeviceStatus wait_for_state(const std::string& device, DeviceState state, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    DeviceStatus status = device_status(device);
-    while (status.state != state && std::chrono::steady_clock::now() < deadline) status = device_status(device);
-    return status;
-  }
-
   nlohmann::json call(const std::string& op, const nlohmann::json& args = nlohmann::json::object()) {
-    auto reply = client().device_call("parol6", op, args.dump());
-    EXPECT_TRUE(reply) << op << ": " << reply.error().message;
-    return reply ? nlohmann::json::parse(reply.value()) : nlohmann::json();
+    return call_device("parol6", op, args);
   }
 
   Parol6SimProcess sim_{Parol6SimProcess::unique_path("parol6-e2e"), {"--homed"}};

@@ -24,47 +24,13 @@ class PiperTest : public RobotdTest {
              std::vector<std::string> environment = {}) {
     nlohmann::json params{{"can", {{"transport", "standin"}, {"path", sim_.bus_path()}}}};
     params.update(piper_params);
-    nlohmann::json piper{{"name", "piper"},
-                         {"driver", "piper"},
-                         {"rate_hz", 1000},
-                         {"realtime", "prefer"},
-                         {"safe_behavior", "KEEP"},
-                         {"shutdown_behavior", "KEEP"},
-                         {"reconnect_interval_ms", 200},
-                         {"params", params}};
-    nlohmann::json config = sim_arm_config(domain_.id());
-    if (with_sim_arm) {
-      config["devices"].push_back(piper);
-    } else {
-      config["devices"] = nlohmann::json::array({piper});
-    }
-    start_robotd(config, std::move(environment));
+    start_with_device(vendor_device("piper", params), with_sim_arm, std::move(environment));
   }
-
   Session acquire(ControlMode mode = ControlMode::kPosition, std::vector<std::int32_t> motors = {}) {
-    SessionRequest request;
-    request.device = "piper";
-    request.motor_ids = std::move(motors);
-    request.mode = mode;
-    request.on_timeout = Behavior::kKeep;
-    request.timeout = 10s;
-    auto session = client().request_control(request);
-    EXPECT_TRUE(session) << session.error().message;
-    return std::move(session.value());
+    return acquire_device("piper", std::move(motors), mode);
   }
-
-  /// The device's status once it is in `state`, or the last one seen after `timeout`.
-  DeviceStatus wait_for_state(const std::string& device, DeviceState state, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    DeviceStatus status = device_status(device);
-    while (status.state != state && std::chrono::steady_clock::now() < deadline) status = device_status(device);
-    return status;
-  }
-
   nlohmann::json call(const std::string& op, const nlohmann::json& args = nlohmann::json::object()) {
-    auto reply = client().device_call("piper", op, args.dump());
-    EXPECT_TRUE(reply) << op << ": " << reply.error().message;
-    return reply ? nlohmann::json::parse(reply.value()) : nlohmann::json();
+    return call_device("piper", op, args);
   }
 
   PiperSimProcess sim_{PiperSimProcess::unique_path("piper-e2e")};

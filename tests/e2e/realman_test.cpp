@@ -18,51 +18,14 @@ using namespace std::chrono_literals;
 class RealmanTest : public RobotdTest {
  protected:
   void start(bool with_sim_arm, std::vector<std::string> environment = {}) {
-    nlohmann::json realman{{"name", "realman"},
-                           {"driver", "realman"},
-                           {"rate_hz", 1000},
-                           {"realtime", "prefer"},
-                           {"safe_behavior", "KEEP"},
-                           {"shutdown_behavior", "KEEP"},
-                           {"reconnect_interval_ms", 200},
-                           {"params",
-                            {{"model", "RM65"},
-                             {"host", "127.0.0.1"},
-                             {"port", sim_.port()},
-                             {"push", {{"ip", "127.0.0.1"}, {"port", 0}}}}}};
-    nlohmann::json config = sim_arm_config(domain_.id());
-    if (with_sim_arm) {
-      config["devices"].push_back(realman);
-    } else {
-      config["devices"] = nlohmann::json::array({realman});
-    }
-    start_robotd(config, std::move(environment));
+    const nlohmann::json params{
+        {"model", "RM65"}, {"host", "127.0.0.1"}, {"port", sim_.port()}, {"push", {{"ip", "127.0.0.1"}, {"port", 0}}}};
+    start_with_device(vendor_device("realman", params), with_sim_arm, std::move(environment));
   }
-
-  Session acquire(std::vector<std::int32_t> motors = {}, std::chrono::milliseconds timeout = 10s) {
-    SessionRequest request;
-    request.device = "realman";
-    request.motor_ids = std::move(motors);
-    request.on_timeout = Behavior::kKeep;
-    request.timeout = timeout;
-    auto session = client().request_control(request);
-    EXPECT_TRUE(session) << session.error().message;
-    return std::move(session.value());
-  }
-
-  DeviceStatus wait_for_state(const std::string& device, DeviceState state, std::chrono::milliseconds timeout = 5s) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    DeviceStatus status = device_status(device);
-    while (status.state != state && std::chrono::steady_clock::now() < deadline) status = device_status(device);
-    return status;
-  }
-
+  Session acquire(std::vector<std::int32_t> motors = {}) { return acquire_device("realman", std::move(motors)); }
   nlohmann::json call(const std::string& op, const nlohmann::json& args = nlohmann::json::object()) {
-    auto reply = client().device_call("realman", op, args.dump());
-    EXPECT_TRUE(reply) << op << ": " << reply.error().message;
-    return reply ? nlohmann::json::parse(reply.value()) : nlohmann::json();
+    return call_device("realman", op, args);
   }
-
   std::vector<float> measured() {
     const std::vector<double> position = joint_state("realman").position;
     return {position.begin(), position.end()};

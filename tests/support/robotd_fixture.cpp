@@ -54,4 +54,53 @@ bool RobotdTest::wait_for_joints(const std::function<bool(const JointState&)>& p
   return false;
 }
 
+DeviceStatus RobotdTest::wait_for_state(const std::string& device, DeviceState state,
+                                        std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  DeviceStatus status = device_status(device);
+  while (status.state != state && std::chrono::steady_clock::now() < deadline) status = device_status(device);
+  return status;
+}
+
+nlohmann::json RobotdTest::vendor_device(const std::string& driver, const nlohmann::json& params) {
+  return {{"name", driver},
+          {"driver", driver},
+          {"rate_hz", 1000},
+          {"realtime", "prefer"},
+          {"safe_behavior", "KEEP"},
+          {"shutdown_behavior", "KEEP"},
+          {"reconnect_interval_ms", 200},
+          {"params", params}};
+}
+
+void RobotdTest::start_with_device(const nlohmann::json& device, bool with_sim_arm,
+                                   std::vector<std::string> environment) {
+  nlohmann::json config = sim_arm_config(domain_.id());
+  if (with_sim_arm) {
+    config["devices"].push_back(device);
+  } else {
+    config["devices"] = nlohmann::json::array({device});
+  }
+  start_robotd(config, std::move(environment));
+}
+
+Session RobotdTest::acquire_device(const std::string& device, std::vector<std::int32_t> motors, ControlMode mode,
+                                   std::chrono::milliseconds timeout) {
+  SessionRequest request;
+  request.device = device;
+  request.motor_ids = std::move(motors);
+  request.mode = mode;
+  request.on_timeout = Behavior::kKeep;
+  request.timeout = timeout;
+  auto session = client().request_control(request);
+  EXPECT_TRUE(session) << session.error().message;
+  return std::move(session.value());
+}
+
+nlohmann::json RobotdTest::call_device(const std::string& device, const std::string& op, const nlohmann::json& args) {
+  auto reply = client().device_call(device, op, args.dump());
+  EXPECT_TRUE(reply) << op << ": " << reply.error().message;
+  return reply ? nlohmann::json::parse(reply.value()) : nlohmann::json();
+}
+
 }  // namespace robotd::testing

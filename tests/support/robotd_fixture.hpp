@@ -31,6 +31,23 @@ class RobotdTest : public ::testing::Test {
   /// Waits until `predicate(joint_state)` holds; false on timeout.
   bool wait_for_joints(const std::function<bool(const JointState&)>& predicate, std::chrono::milliseconds timeout,
                        const std::string& device = "arm");
+  /// The device's status once it is in `state`, or the last one seen after `timeout`.
+  DeviceStatus wait_for_state(const std::string& device, DeviceState state,
+                              std::chrono::milliseconds timeout = std::chrono::seconds(5));
+
+  // Vendor drivers end to end: a device named after its driver, next to the test arm or alone.
+  /// The device entry the vendor tests run: 1 kHz, KEEP on fault and shutdown, reconnecting
+  /// every 200 ms, `params` for the driver.
+  static nlohmann::json vendor_device(const std::string& driver, const nlohmann::json& params);
+  /// Starts robotd with `device`, alone or (with_sim_arm) after the simulated arm "arm".
+  void start_with_device(const nlohmann::json& device, bool with_sim_arm, std::vector<std::string> environment = {});
+  /// A session on `device` that KEEPs on timeout; a test failure when refused.
+  Session acquire_device(const std::string& device, std::vector<std::int32_t> motors = {},
+                         ControlMode mode = ControlMode::kPosition,
+                         std::chrono::milliseconds timeout = std::chrono::seconds(10));
+  /// A device_call that must succeed: its JSON result (null, and a test failure, when refused).
+  nlohmann::json call_device(const std::string& device, const std::string& op,
+                             const nlohmann::json& args = nlohmann::json::object());
 
   TestDomain domain_;
   std::unique_ptr<RobotdProcess> robotd_;
