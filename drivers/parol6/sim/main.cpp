@@ -5,26 +5,18 @@
 //
 // Prints "ready" once the pty and the control socket are there; runs until SIGTERM or SIGINT.
 #include <csignal>
-#include <iostream>
 
 #include <CLI/CLI.hpp>
-#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "robotd/sim_control/sim_main.hpp"
 #include "simulator.hpp"
 
 namespace {
 
-constexpr int kExitUsage = 2;
+constexpr const char* kProgram = "robotd-parol6-sim";
 
-volatile std::sig_atomic_t stop_requested = 0;
-
-void request_stop(int /*signal*/) { stop_requested = 1; }
-
-int fail(const std::string& message) {
-  std::cerr << "robotd-parol6-sim: " << message << "\n";
-  return kExitUsage;
-}
+int fail(const std::string& message) { return robotd::sim_control::usage_error(kProgram, message); }
 
 }  // namespace
 
@@ -44,12 +36,7 @@ int main(int argc, char** argv) {
   app.add_option("--initial-steps", initial_steps, "the step counters at start: a,b,c,d,e,f (default all 0)");
   app.add_flag("--no-gripper", no_gripper, "no gripper on the board's CAN bus (the reply keeps its constants)");
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    const int status = app.exit(error);
-    return status == 0 ? 0 : kExitUsage;
-  }
+  if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
   if (options.pty_path.empty()) return fail("--pty needs a path");
   options.gripper = !no_gripper;
   if (!initial_steps.empty()) {
@@ -58,24 +45,17 @@ int main(int argc, char** argv) {
     options.initial_steps = steps.value();
   }
 
-  auto logger = spdlog::stderr_logger_st("robotd-parol6-sim");
-  spdlog::set_default_logger(logger);
-  spdlog::set_level(options.quiet ? spdlog::level::warn : spdlog::level::info);
+  robotd::sim_control::log_to_stderr(kProgram, options.quiet);
 
   robotd::parol6::sim::Simulator simulator(options);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);
 
-  struct sigaction action {};
-  action.sa_handler = request_stop;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
+  const volatile std::sig_atomic_t& stop_requested = robotd::sim_control::stop_on_signals();
 
   spdlog::info("pty {}, homing {} ms{}{}{}", options.pty_path, options.homing_ms, options.homed ? ", homed" : "",
                options.gripper ? ", SSG-48 gripper" : ", no gripper",
                options.control_path.empty() ? "" : ", control " + options.control_path);
-  std::cout << "ready" << std::endl;  // the one line on stdout; flushed
+  robotd::sim_control::announce_ready();
   simulator.run(stop_requested);
   return 0;
 }

@@ -5,27 +5,19 @@
 //
 // Prints "ready" once the bus and the control socket listen; runs until SIGTERM or SIGINT.
 #include <csignal>
-#include <iostream>
 
 #include <CLI/CLI.hpp>
-#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "firmware_info.hpp"
+#include "robotd/sim_control/sim_main.hpp"
 #include "simulator.hpp"
 
 namespace {
 
-constexpr int kExitUsage = 2;
+constexpr const char* kProgram = "robotd-piper-sim";
 
-volatile std::sig_atomic_t stop_requested = 0;
-
-void request_stop(int /*signal*/) { stop_requested = 1; }
-
-int fail(const std::string& message) {
-  std::cerr << "robotd-piper-sim: " << message << "\n";
-  return kExitUsage;
-}
+int fail(const std::string& message) { return robotd::sim_control::usage_error(kProgram, message); }
 
 }  // namespace
 
@@ -53,12 +45,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--initial", initial, "the joints at start, rad: q1,q2,q3,q4,q5,q6 (default all 0)");
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    const int status = app.exit(error);
-    return status == 0 ? 0 : kExitUsage;
-  }
+  if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
 
   if (standin_option->count() == 0 && interface_option->count() == 0) {
     return fail("say where the bus is: --standin PATH (unix socket stand-in) or --interface NAME (SocketCAN)");
@@ -81,19 +68,12 @@ int main(int argc, char** argv) {
     options.initial_rad = joints.value();
   }
 
-  auto logger = spdlog::stderr_logger_st("robotd-piper-sim");
-  spdlog::set_default_logger(logger);
-  spdlog::set_level(options.quiet ? spdlog::level::warn : spdlog::level::info);
+  robotd::sim_control::log_to_stderr(kProgram, options.quiet);
 
   robotd::piper::sim::Simulator simulator(options);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);
 
-  struct sigaction action {};
-  action.sa_handler = request_stop;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
+  const volatile std::sig_atomic_t& stop_requested = robotd::sim_control::stop_on_signals();
 
   spdlog::info("{} firmware {}, feedback {} Hz{}",
                options.bus.kind == robotd::transport::CanLinkConfig::Kind::kStandIn
@@ -101,7 +81,7 @@ int main(int argc, char** argv) {
                    : "SocketCAN " + options.bus.interface,
                options.firmware, options.feedback_rate_hz,
                options.control_path.empty() ? "" : ", control " + options.control_path);
-  std::cout << "ready" << std::endl;  // the one line on stdout; flushed
+  robotd::sim_control::announce_ready();
   simulator.run(stop_requested);
   return 0;
 }

@@ -6,26 +6,18 @@
 //
 // Prints "ready" once it listens; runs until SIGTERM or SIGINT.
 #include <csignal>
-#include <iostream>
 
 #include <CLI/CLI.hpp>
-#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "robotd/sim_control/sim_main.hpp"
 #include "simulator.hpp"
 
 namespace {
 
-constexpr int kExitUsage = 2;
+constexpr const char* kProgram = "robotd-realman-sim";
 
-volatile std::sig_atomic_t stop_requested = 0;
-
-void request_stop(int /*signal*/) { stop_requested = 1; }
-
-int fail(const std::string& message) {
-  std::cerr << "robotd-realman-sim: " << message << "\n";
-  return kExitUsage;
-}
+int fail(const std::string& message) { return robotd::sim_control::usage_error(kProgram, message); }
 
 std::string known_models() {
   std::string names;
@@ -58,34 +50,22 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"list", "legacy", "scalar"}))
       ->capture_default_str();
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    const int status = app.exit(error);
-    return status == 0 ? 0 : kExitUsage;
-  }
+  if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
   options.generation = *robotd::realman::sim::parse_generation(generation);
   options.error_shape = *robotd::realman::sim::parse_error_shape(error_shape);
   const auto model = robotd::realman::find_model(options.model);
   if (!model) return fail("--model \"" + options.model + "\" is not a model it knows (" + known_models() + ")");
 
-  auto logger = spdlog::stderr_logger_st("robotd-realman-sim");
-  spdlog::set_default_logger(logger);
-  spdlog::set_level(options.quiet ? spdlog::level::warn : spdlog::level::info);
+  robotd::sim_control::log_to_stderr(kProgram, options.quiet);
 
   robotd::realman::sim::Simulator simulator(options, *model);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);
 
-  struct sigaction action {};
-  action.sa_handler = request_stop;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
+  const volatile std::sig_atomic_t& stop_requested = robotd::sim_control::stop_on_signals();
 
   spdlog::info("{} (generation {}, errors as {}) on {}:{}{}", options.model, generation, error_shape, options.host,
                options.port, options.control_path.empty() ? "" : ", control " + options.control_path);
-  std::cout << "ready" << std::endl;  // the one line on stdout; flushed
+  robotd::sim_control::announce_ready();
   simulator.run(stop_requested);
   return 0;
 }
