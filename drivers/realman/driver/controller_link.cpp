@@ -75,13 +75,12 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   tracker_ = RequestTracker{};
   splitter_.clear();
   tcp_out_.clear();
-  rt_counters_ = LinkCounters{};
-  counters_.store(rt_counters_);
+  link_counters_ = LinkCounters{};
+  counters_.store(link_counters_);
   feedback_.store(ArmFeedback{});
   health_.store(LinkHealth{});
   target_.store(StreamTarget{});
   restart_stream_.store(true);
-  have_previous_sample_ = false;
   feedback_sequence_ = 0;
   last_feedback_at_ = {};
   poll_in_flight_ = false;
@@ -229,7 +228,7 @@ void ControllerLink::serve(Clock::time_point now) {
     return;
   }
   flush_tcp();
-  counters_.store(rt_counters_);
+  counters_.store(link_counters_);
 }
 
 void ControllerLink::wait_for_io(Clock::time_point now) {
@@ -256,7 +255,7 @@ void ControllerLink::take_requests(Clock::time_point now) {
   }
   for (Outgoing& outgoing : taken) {
     tcp_out_ += outgoing.bytes;
-    ++rt_counters_.requests;
+    ++link_counters_.requests;
     tracker_.sent(std::move(outgoing.request), now);
   }
 }
@@ -277,7 +276,7 @@ void ControllerLink::read_tcp(Clock::time_point now) {
     }
     const std::uint64_t oversized_before = splitter_.oversized();
     splitter_.append(std::string_view(buffer.data(), static_cast<std::size_t>(n)));
-    rt_counters_.bad_lines += splitter_.oversized() - oversized_before;
+    link_counters_.bad_lines += splitter_.oversized() - oversized_before;
     while (auto line = splitter_.next()) handle_line(*line, now);
   }
 }
@@ -285,21 +284,21 @@ void ControllerLink::read_tcp(Clock::time_point now) {
 void ControllerLink::handle_line(const std::string& line, Clock::time_point now) {
   auto message = parse_message(line);
   if (!message) {
-    ++rt_counters_.bad_lines;
+    ++link_counters_.bad_lines;
     return;
   }
   switch (message.value().kind) {
     case MessageKind::kReply:
-      if (!tracker_.on_reply(message.value(), now)) ++rt_counters_.unmatched;
+      if (!tracker_.on_reply(message.value(), now)) ++link_counters_.unmatched;
       break;
     case MessageKind::kTrajectoryEvent: {
       const auto event = parse_trajectory_event(message.value());
-      if (!event || !tracker_.on_event(event.value())) ++rt_counters_.unmatched;
+      if (!event || !tracker_.on_event(event.value())) ++link_counters_.unmatched;
       break;
     }
     case MessageKind::kRealtimePush:
     case MessageKind::kOther:
-      ++rt_counters_.unmatched;
+      ++link_counters_.unmatched;
       break;
   }
 }
@@ -314,7 +313,7 @@ void ControllerLink::read_push() {
     auto push =
         parse_realtime_push(std::string_view(datagram.data(), static_cast<std::size_t>(n)), settings_.speed_unit);
     if (!push) {
-      ++rt_counters_.bad_pushes;
+      ++link_counters_.bad_pushes;
       continue;
     }
     const RealtimePush& pushed = push.value();
@@ -323,7 +322,7 @@ void ControllerLink::read_push() {
                 std::to_string(settings_.dof) + "; set \"model\" to the arm's model");
       return;
     }
-    ++rt_counters_.pushes;
+    ++link_counters_.pushes;
     Sample sample{.position_rad = pushed.position_rad,
                   .velocity_rad_s = std::nullopt,
                   .enabled = pushed.enabled,
@@ -347,7 +346,7 @@ void ControllerLink::poll_state(Clock::time_point now) {
   next_poll_at_ = std::max(next_poll_at_ + settings_.poll_period, now);
   if (poll_in_flight_) return;
   poll_in_flight_ = true;
-  ++rt_counters_.polls;
+  ++link_counters_.polls;
   const auto shape = reply_shape("get_current_arm_state");
   Request request{
       .command = "get_current_arm_state",
@@ -366,7 +365,7 @@ void ControllerLink::poll_state(Clock::time_point now) {
             const Message message{MessageKind::kReply, "current_arm_state", std::move(reply).value()};
             auto state = parse_current_arm_state(message);
             if (!state || state.value().dof != settings_.dof) {
-              ++rt_counters_.bad_pushes;
+              ++link_counters_.bad_pushes;
               return;
             }
             Sample sample;
@@ -391,8 +390,8 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
   out.enabled = sample.enabled;
   if (sample.velocity_rad_s) {
     out.velocity_rad_s = *sample.velocity_rad_s;
-  } else if (have_previous_sample_) {
-    double dt_s = std::chrono::duration<double>(now - previous_sample_at_).count();
+  } else if (last_feedback_at_ != Clock::time_point{}) {
+    double dt_s = std::chrono::duration<double>(now - last_feedback_at_).count();
     if (settings_.push) {
       // Datagrams leave the controller every cycle; arrival jitter is not motion.
       const double cycle_s = std::chrono::duration<double>(kPushCycleUnit).count() * settings_.push_cycle;
@@ -405,8 +404,6 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
     }
   }
   previous_position_ = sample.position_rad;
-  previous_sample_at_ = now;
-  have_previous_sample_ = true;
   if (sample.pose) {
     out.has_pose = true;
     out.pose = *sample.pose;
@@ -448,11 +445,11 @@ void ControllerLink::stream(Clock::time_point now) {
     last_sent_[j] += step;
   }
   tcp_out_ += frame(movej_canfd_request(std::span(last_sent_.data(), settings_.dof), settings_.pass_through));
-  ++rt_counters_.stream_frames;
-  if (clipped) ++rt_counters_.clipped_frames;
+  ++link_counters_.stream_frames;
+  if (clipped) ++link_counters_.clipped_frames;
   if (last_stream_at_ != Clock::time_point{}) {
     const auto interval = std::chrono::duration_cast<std::chrono::nanoseconds>(now - last_stream_at_).count();
-    rt_counters_.stream_interval_max_ns = std::max(rt_counters_.stream_interval_max_ns, interval);
+    link_counters_.stream_interval_max_ns = std::max(link_counters_.stream_interval_max_ns, interval);
   }
   last_stream_at_ = now;
 }
@@ -472,7 +469,7 @@ void ControllerLink::lose_link(const std::string& why) {
   lost_ = true;
   health_.store(LinkHealth{.lost = true, .reason = fault_of(kLinkLostFault, why)});
   tracker_.fail_all("the link to the controller was lost: " + why);
-  counters_.store(rt_counters_);
+  counters_.store(link_counters_);
 }
 
 }  // namespace robotd::realman

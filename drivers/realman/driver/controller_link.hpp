@@ -178,11 +178,9 @@ class ControllerLink {
   RequestTracker tracker_;
   LineSplitter splitter_;
   std::string tcp_out_;
-  LinkCounters rt_counters_;
-  Clock::time_point last_feedback_at_{};
-  Clock::time_point previous_sample_at_{};
+  LinkCounters link_counters_;
+  Clock::time_point last_feedback_at_{};  // {}: none yet
   JointValues previous_position_{};
-  bool have_previous_sample_ = false;
   std::uint64_t feedback_sequence_ = 0;
   Clock::time_point next_stream_at_{};
   Clock::time_point last_stream_at_{};

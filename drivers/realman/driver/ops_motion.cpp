@@ -37,9 +37,9 @@ std::optional<Error> RealmanOps::check_can_move(std::string_view op) const {
     return make_error(ErrorCode::kRefused,
                       std::string(op) + ": a session is streaming joint commands to this arm; release it first");
   }
-  if (driver_.link_.feedback().fault.code != 0) {
-    return make_error(ErrorCode::kRefused, std::string(op) + ": " + driver_.link_.feedback().fault.text.data() +
-                                               "; clear it first (robotctl recover)");
+  if (const ArmFeedback feedback = driver_.link_.feedback(); feedback.fault.code != 0) {
+    return make_error(ErrorCode::kRefused,
+                      std::string(op) + ": " + feedback.fault.text.data() + "; clear it first (robotctl recover)");
   }
   return std::nullopt;
 }

@@ -193,7 +193,6 @@ driver::IoResult RealmanDriver::read(driver::Feedback& out, driver::FaultInfo& f
     out.joints[j] = driver::JointFeedback{.position_rad = rt_feedback_.position_rad[j],
                                           .velocity_rad_s = rt_feedback_.velocity_rad_s[j],
                                           .effort_nm = 0};  // the controller reports currents, not torques
-    measured_[j] = rt_feedback_.position_rad[j];
   }
   out.has_end_pose = rt_feedback_.has_pose;
   out.end_pose = rt_feedback_.pose;
@@ -216,7 +215,7 @@ driver::IoResult RealmanDriver::write(const driver::CommandFrame& command, drive
   for (std::size_t j = 0; j < params_.model.dof; ++j) {
     const driver::JointCommand* joint = j < dof ? &command.joints[j] : nullptr;
     const bool positioned = joint != nullptr && joint->kind == driver::JointCommandKind::kPosition;
-    target.joints_rad[j] = positioned ? joint->position_rad : measured_[j];
+    target.joints_rad[j] = positioned ? joint->position_rad : rt_feedback_.position_rad[j];
     target.active = target.active || (positioned && joint->owned);
   }
   link_.publish_target(target);

@@ -65,8 +65,7 @@ class RealmanDriver final : public driver::Driver {
 
   // RT thread.
   std::uint64_t last_sequence_ = 0;
-  JointValues measured_{};
-  ArmFeedback rt_feedback_;
+  ArmFeedback rt_feedback_;  // the newest read(); write() holds unowned joints where it measured them
   driver::FaultInfo not_connected_fault_;
 };
 

@@ -45,7 +45,6 @@ class RequestTracker {
   void fail_all(const std::string& why);
   /// The nearest deadline, if any request is waiting.
   std::optional<Clock::time_point> next_deadline() const;
-  bool empty() const { return awaiting_reply_.empty() && awaiting_completion_.empty(); }
 
  private:
   std::deque<Request> awaiting_reply_;
