@@ -90,6 +90,7 @@ void SimDriver::disconnect() noexcept { connected_.store(false); }
 
 Result<void> SimDriver::recover() {
   if (!configured_) return make_error(ErrorCode::kRefused, "recover: the sim driver is not configured");
+  recover_calls_.fetch_add(1);
   const std::int64_t down_for_ns = link_down_until_ns_.load() - monotonic_now_ns();
   if (down_for_ns > 0) {
     return make_error(ErrorCode::kNotAvailable, "simulated link still down for another " +

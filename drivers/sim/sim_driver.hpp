@@ -117,9 +117,9 @@ class SimDriver final : public driver::Driver {
   std::atomic<std::uint64_t> link_generation_{0};
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
-  std::atomic<std::int64_t> stall_ns_{0};
-  std::atomic<bool> estop_input_{
-      false};  // the simulated controller's e-stop button  // the next read() blocks this long (a hung bus)
+  std::atomic<std::int64_t> stall_ns_{0};        // the next read() blocks this long (a hung bus)
+  std::atomic<bool> estop_input_{false};         // the simulated controller's e-stop button
+  std::atomic<std::uint64_t> recover_calls_{0};  // how often robotd (or a person) tried recover()
   // An injected disconnect lasts until this CLOCK_MONOTONIC time: recover() fails before it.
   std::atomic<std::int64_t> link_down_until_ns_{0};
   // Client send → write() latency of every frame that carries a new command (see

@@ -39,7 +39,7 @@ constexpr std::array<OpSpec, 8> kOps{{
      R"({"reset": bool, "samples": bool}: time from a client's publish (ControlCommand.sent_steady_ns) to the )"
      R"(write() that carried it: count and p50/p99/p99.9/max in µs, every sample in ns with samples=true)"},
     {"state", R"({}: per joint position (rad), velocity (rad/s), applied torque (N·m), command kind, applied kp, kd; )"
-              R"(e-stop, link, feedback and injected fault)"},
+              R"(e-stop, link, feedback, recover() calls and injected fault)"},
 }};
 
 std::string_view help_of(std::string_view op) {
@@ -309,6 +309,7 @@ Result<nlohmann::json> SimDriver::state(const nlohmann::json& args) const {
                         {"estop", snapshot.estop},
                         {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
                         {"feedback", injected.feedback_stopped ? "stopped" : "streaming"},
+                        {"recover_calls", recover_calls_.load()},
                         {"injected_fault", std::move(fault)}};
 }
 

@@ -199,6 +199,22 @@ TEST_F(SafetyTest, LostLinkIsAFaultAndRecoverReconnects) {
   EXPECT_EQ(sim_state()["link"], "connected");
 }
 
+TEST_F(SafetyTest, ReconnectAttemptsBackOffWhileTheLinkStaysDown) {
+  start_robotd(
+      sim_arm_config(domain_.id(), nullptr, {{"reconnect_interval_ms", 100}, {"reconnect_max_interval_ms", 800}}));
+  ASSERT_TRUE(client().device_call("arm", "disconnect", R"({"for_ms": 2500})"));
+  const auto lost_at = std::chrono::steady_clock::now();
+  bool back = false;
+  while (!back && std::chrono::steady_clock::now() - lost_at < 6s)
+    back = device_status().state == DeviceState::kRunning;
+  ASSERT_TRUE(back) << "robotd did not reconnect after the outage";
+  // Attempts 100, 200, 400, 800, 800 … ms apart: about 6 in 2.5 s, where a fixed 100 ms would make 25.
+  const auto calls = sim_state()["recover_calls"].get<int>();
+  EXPECT_GE(calls, 4);
+  EXPECT_LE(calls, 8);
+  EXPECT_LT(std::chrono::steady_clock::now() - lost_at, 2500ms + 800ms + 1s) << "waited beyond the ceiling";
+}
+
 TEST_F(SafetyTest, LostLinkReconnectsByItselfWhenTheLinkReturnsAndTheArmDoesNotJump) {
   start_robotd(sim_arm_config(domain_.id(), nullptr, {{"reconnect_interval_ms", 200}}));
   Session session = acquire({0, 1});
