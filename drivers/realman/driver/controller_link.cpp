@@ -81,6 +81,7 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   health_.store(LinkHealth{});
   target_.store(StreamTarget{});
   restart_stream_.store(true);
+  stopping_.store(false);
   feedback_sequence_ = 0;
   last_feedback_at_ = {};
   poll_in_flight_ = false;
@@ -412,6 +413,9 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
   out.fault = arm_fault(sample.errors, std::span(sample.joint_errors.data(), settings_.dof));
   out.sequence = ++feedback_sequence_;
   feedback_.store(out);
+  if (stopping_.load(std::memory_order_acquire) && at_rest(out, nullptr)) {
+    stopping_.store(false, std::memory_order_release);
+  }
   last_feedback_at_ = now;
 }
 
@@ -426,13 +430,17 @@ void ControllerLink::stream(Clock::time_point now) {
     return;
   }
   estop_sent_ = false;
+  const ArmFeedback measured = feedback_.load();
   if (!target.active) {
-    // The session ended or timed out: no more frames, and the controller stays at the last one
-    // (within a frame's step of the arm). A slow stop here would abort the next planned move.
+    // The session ended or timed out while the arm was still on its way (low follow, filtering):
+    // decelerate and stop on the path. Planned moves wait until it is at rest (stopping()).
+    if (streaming_ && !at_rest(measured, &last_sent_)) {
+      send_unawaited(plain_request("set_arm_slow_stop"));
+      stopping_.store(true, std::memory_order_release);
+    }
     streaming_ = false;
     return;
   }
-  const ArmFeedback measured = feedback_.load();
   if (measured.sequence == 0) return;  // nothing to start from yet
   if (!streaming_ || restart_stream_.exchange(false)) last_sent_ = measured.position_rad;
   streaming_ = true;
@@ -452,6 +460,16 @@ void ControllerLink::stream(Clock::time_point now) {
     link_counters_.stream_interval_max_ns = std::max(link_counters_.stream_interval_max_ns, interval);
   }
   last_stream_at_ = now;
+}
+
+bool ControllerLink::at_rest(const ArmFeedback& measured, const JointValues* target) const {
+  constexpr double kAtTargetRad = 2e-3;
+  constexpr double kAtRestRadS = 0.01;
+  for (std::size_t j = 0; j < settings_.dof; ++j) {
+    if (std::fabs(measured.velocity_rad_s[j]) > kAtRestRadS) return false;
+    if (target != nullptr && std::fabs((*target)[j] - measured.position_rad[j]) > kAtTargetRad) return false;
+  }
+  return true;
 }
 
 void ControllerLink::flush_tcp() {

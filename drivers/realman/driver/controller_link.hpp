@@ -115,6 +115,8 @@ class ControllerLink {
   const transport::Endpoint& push_endpoint() const { return push_endpoint_; }
   /// Clears the stream's start point: the next active target starts from the measured joints.
   void restart_stream() noexcept { restart_stream_.store(true, std::memory_order_release); }
+  /// A slow stop sent at the end of a session is still bringing the arm to rest.
+  bool stopping() const noexcept { return stopping_.load(std::memory_order_acquire); }
 
   // RT thread.
   void publish_target(const StreamTarget& target) noexcept { target_.store(target); }
@@ -139,6 +141,8 @@ class ControllerLink {
   void take_requests(Clock::time_point now);
   void flush_tcp();
   void stream(Clock::time_point now);
+  /// Every joint still (and, with `target`, within 2 mrad of it).
+  bool at_rest(const ArmFeedback& measured, const JointValues* target) const;
   void poll_state(Clock::time_point now);
   /// One feedback sample from the push or a poll, in robotd's units.
   struct Sample {
@@ -171,6 +175,7 @@ class ControllerLink {
   driver::SeqLock<LinkHealth> health_;
   driver::SeqLock<LinkCounters> counters_;
   std::atomic<bool> restart_stream_{true};
+  std::atomic<bool> stopping_{false};
   mutable std::mutex status_mutex_;
   std::string arm_status_;
 

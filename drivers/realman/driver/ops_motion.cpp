@@ -1,5 +1,7 @@
 // Planned moves, stops, enable and error clearing.
+#include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "driver/realman_ops.hpp"
 
@@ -33,6 +35,16 @@ std::optional<Error> check_block(std::string_view op, const PlannedMove& move, b
 }  // namespace
 
 std::optional<Error> RealmanOps::check_can_move(std::string_view op) const {
+  // A session that ended on the way left a slow stop decelerating the arm; a move sent now would
+  // be cut short by it.
+  constexpr auto kStopWait = std::chrono::seconds(2);
+  const auto deadline = std::chrono::steady_clock::now() + kStopWait;
+  while (driver_.link_.stopping() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (driver_.link_.stopping()) {
+    return make_error(ErrorCode::kRefused, std::string(op) + ": the arm is still slowing down after its session ended");
+  }
   if (driver_.session_streaming_.load(std::memory_order_relaxed)) {
     return make_error(ErrorCode::kRefused,
                       std::string(op) + ": a session is streaming joint commands to this arm; release it first");
