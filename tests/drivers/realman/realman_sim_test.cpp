@@ -40,10 +40,11 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr auto kReplyTimeout = 1000ms;
 
 /// A well-conditioned RM65 posture (flange at x −410 mm, z 337 mm, pointing down), in rad.
-const std::vector<double> kPostureRad = {0, 30 * kDeg, 60 * kDeg, 0, 60 * kDeg, 0};
+std::vector<double> posture_rad() { return {0, 30 * kDeg, 60 * kDeg, 0, 60 * kDeg, 0}; }
 
 std::vector<std::int64_t> millidegrees(const std::vector<double>& degrees) {
   std::vector<std::int64_t> out;
+  out.reserve(degrees.size());
   for (const double d : degrees) out.push_back(std::llround(d * 1000));
   return out;
 }
@@ -415,7 +416,7 @@ TEST_F(RealmanSimTest, ATargetBeyondALimitIsRefusedWithoutLatchingAnError) {
   EXPECT_EQ(reply["receive_state"], false);
   EXPECT_EQ(reply["error"],
             "joint 3 target 140.000° is outside -135.000° … 135.000° (0x1002 target angle beyond joint limit)");
-  EXPECT_EQ(client_->request(plain("get_current_arm_state"))["arm_state"]["err"], json({0}));
+  EXPECT_EQ(client_->request(plain("get_current_arm_state"))["arm_state"]["err"], json::array({0}));
   EXPECT_EQ(client_->request(movej({0, 0, 10, 0, 0, 0}, 100))["receive_state"], true) << "nothing to clear";
 }
 
@@ -506,7 +507,7 @@ TEST_F(RealmanSimTest, DeletingTrajectoriesNeedsAPause) {
 }
 
 TEST_F(RealmanSimTest, MovelKeepsTheFlangeOnAStraightLine) {
-  teleport(kPostureRad);
+  teleport(posture_rad());
   PushReceiver push;
   push_to(push, {{"arm_current_status", true}});
   const json start = client_->request(plain("get_current_arm_state"))["arm_state"]["pose"];
@@ -536,7 +537,7 @@ TEST_F(RealmanSimTest, MovelKeepsTheFlangeOnAStraightLine) {
 }
 
 TEST_F(RealmanSimTest, MovejPReachesThePoseInJointSpace) {
-  teleport(kPostureRad);
+  teleport(posture_rad());
   json goal = client_->request(plain("get_current_arm_state"))["arm_state"]["pose"];
   goal[0] = goal[0].get<std::int64_t>() + 40'000;
   ASSERT_EQ(client_->request({{"command", "movej_p"}, {"pose", goal}, {"v", 80}})["receive_state"], true);
@@ -554,7 +555,7 @@ TEST_F(RealmanSimTest, MovejPReachesThePoseInJointSpace) {
 }
 
 TEST_F(RealmanSimTest, StepCommandsMoveFromWhereTheArmIs) {
-  teleport(kPostureRad);
+  teleport(posture_rad());
   ASSERT_EQ(client_->request({{"command", "set_joint_step"}, {"joint_step", {6, 10000}}, {"v", 100}})["receive_state"],
             true);
   ASSERT_TRUE(client_->next_event(2000ms));
@@ -694,7 +695,7 @@ TEST_F(RealmanSimTest, PushCycle4SendsEvery20Ms) {
 }
 
 TEST_F(RealmanSimTest, PushDatagramIsCompactJsonEndingInCrLf) {
-  teleport(kPostureRad);
+  teleport(posture_rad());
   PushReceiver push;
   push_to(push, {{"joint_speed", true}, {"arm_current_status", true}, {"hand", true}});
   const auto datagram = push.next();
@@ -717,7 +718,7 @@ TEST_F(RealmanSimTest, PushDatagramIsCompactJsonEndingInCrLf) {
   double norm = 0;
   for (const auto& q : waypoint["quat"]) norm += q.get<double>() * q.get<double>();
   EXPECT_NEAR(std::sqrt(norm), 1e6, 2);
-  EXPECT_EQ(push_json["err"], json({0}));
+  EXPECT_EQ(push_json["err"], json::array({0}));
   EXPECT_EQ(push_json["arm_current_status"], "idle");
   EXPECT_EQ(push_json["hand"]["hand_angle"].size(), 6U);
 }
@@ -1038,7 +1039,7 @@ TEST_F(RealmanSimTest, ARaisedErrorShowsInThePush) {
   control({{"op", "raise_error"}, {"code", 0x1007}});
   EXPECT_EQ(push.fresh_json().value_or(json())["err"], json({0x1007}));
   control({{"op", "clear"}});
-  EXPECT_EQ(push.fresh_json().value_or(json())["err"], json({0}));
+  EXPECT_EQ(push.fresh_json().value_or(json())["err"], json::array({0}));
 }
 
 TEST_F(RealmanSimTest, SetJointsTeleportsTheArm) {
