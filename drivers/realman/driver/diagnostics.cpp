@@ -1,4 +1,6 @@
 // What `robotctl status` shows for a realman device.
+#include <cmath>
+
 #include "driver/realman_driver.hpp"
 
 namespace robotd::realman {
@@ -18,7 +20,7 @@ driver::Diagnostics RealmanDriver::diagnostics() const {
                        ? "UDP push to " + link_.push_endpoint().to_string() + " every " +
                              std::to_string(5 * params_.push.cycle) + " ms"
                        : "polling get_current_arm_state every " + std::to_string(params_.poll_period_ms) + " ms"},
-      {"stream", "movej_canfd at " + std::to_string(params_.command_rate_hz) + " Hz, " +
+      {"stream", "movej_canfd at " + std::to_string(std::lround(params_.command_rate_hz)) + " Hz, " +
                      (params_.pass_through.follow ? "high follow" : "low follow")},
       {"arm_status", link_.last_arm_status()},
       {"controller_error", feedback.fault.code == 0 ? "none" : feedback.fault.text.data()},
