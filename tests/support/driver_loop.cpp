@@ -1,5 +1,7 @@
 #include "driver_loop.hpp"
 
+#include <cmath>
+
 namespace robotd::testing {
 
 using namespace std::chrono_literals;
@@ -70,6 +72,29 @@ void DriverLoop::tick() {
     const std::lock_guard lock(mutex_);
     fault_ = write_fault;
   }
+}
+
+driver::CommandFrame position_frame(std::span<const double> q, bool owned, std::size_t joint_count) {
+  driver::CommandFrame frame;
+  frame.joint_count = joint_count == 0 ? q.size() : joint_count;
+  for (std::size_t j = 0; j < q.size(); ++j) {
+    frame.joints[j] = {.kind = driver::JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
+  }
+  return frame;
+}
+
+bool joints_near(const driver::Feedback& feedback, std::span<const double> q, double tolerance) {
+  for (std::size_t j = 0; j < q.size(); ++j) {
+    if (std::fabs(feedback.joints[j].position_rad - q[j]) > tolerance) return false;
+  }
+  return true;
+}
+
+std::string diagnostic(const driver::Driver& driver, const std::string& key) {
+  for (const auto& [name, value] : driver.diagnostics()) {
+    if (name == key) return value;
+  }
+  return "(no " + key + ")";
 }
 
 }  // namespace robotd::testing

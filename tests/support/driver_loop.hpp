@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstddef>
 #include <mutex>
+#include <span>
 #include <string>
 #include <thread>
 
@@ -62,5 +63,13 @@ class DriverLoop {
   std::atomic<bool> running_{true};
   std::thread thread_;
 };
+
+/// A frame that positions the first q.size() joints at q, owned by a session when `owned`;
+/// `joint_count` joints in all (0: q.size()).
+driver::CommandFrame position_frame(std::span<const double> q, bool owned = true, std::size_t joint_count = 0);
+/// Whether each of the first q.size() joints of `feedback` is within `tolerance` of q.
+bool joints_near(const driver::Feedback& feedback, std::span<const double> q, double tolerance);
+/// The value of `key` in the driver's diagnostics, or "(no <key>)".
+std::string diagnostic(const driver::Driver& driver, const std::string& key);
 
 }  // namespace robotd::testing

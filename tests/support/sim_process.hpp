@@ -60,4 +60,8 @@ class SimProcess {
   std::unique_ptr<ChildProcess> child_;
 };
 
+/// Runs `program` with `arguments` to its end, stdout and stderr to /dev/null; its exit status
+/// (128 + the signal when a signal ended it, −1 when it could not be started).
+int run_to_exit(const std::string& program, const std::vector<std::string>& arguments);
+
 }  // namespace robotd::testing

@@ -16,17 +16,7 @@ constexpr std::int64_t kReopenRetryNs = 100'000'000;
 constexpr int kMaxReadsPerPass = 64;
 constexpr std::size_t kFieldBytes = 50;  // host body offsets 0 … 49 carry fields
 
-timespec to_timespec(std::int64_t ns) {
-  return timespec{.tv_sec = static_cast<time_t>(ns / 1'000'000'000), .tv_nsec = static_cast<long>(ns % 1'000'000'000)};
-}
-
 }  // namespace
-
-std::int64_t monotonic_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
 
 Simulator::Simulator(SimOptions options) : options_(std::move(options)), board_(options_, monotonic_ns()) {
   logged_ = summary();

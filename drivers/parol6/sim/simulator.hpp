@@ -17,6 +17,7 @@
 #include "codec/parol6_frames.hpp"
 #include "line_faults.hpp"
 #include "robotd/sim_control/control_server.hpp"
+#include "robotd/sim_control/sim_clock.hpp"
 #include "robotd/transport/serial_port.hpp"
 #include "sim_options.hpp"
 
@@ -84,7 +85,7 @@ class Simulator {
   Summary logged_;
 };
 
-/// CLOCK_MONOTONIC in ns.
-std::int64_t monotonic_ns();
+using sim_control::monotonic_ns;
+using sim_control::to_timespec;
 
 }  // namespace robotd::parol6::sim

@@ -23,17 +23,7 @@ constexpr int kMaxFramesPerPoll = 1000;
 constexpr int kGarbagePerLoop = 10;  // spread out, so feedback keeps flowing between them
 constexpr std::int64_t kReopenRetryNs = 100'000'000;
 
-timespec to_timespec(std::int64_t ns) {
-  return timespec{.tv_sec = static_cast<time_t>(ns / 1'000'000'000), .tv_nsec = static_cast<long>(ns % 1'000'000'000)};
-}
-
 }  // namespace
-
-std::int64_t monotonic_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
 
 Simulator::Simulator(SimOptions options)
     : options_(std::move(options)),

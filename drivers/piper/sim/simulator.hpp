@@ -17,6 +17,7 @@
 #include "arm_model.hpp"
 #include "controller.hpp"
 #include "robotd/sim_control/control_server.hpp"
+#include "robotd/sim_control/sim_clock.hpp"
 #include "robotd/transport/can_transport.hpp"
 #include "sim_options.hpp"
 
@@ -85,7 +86,7 @@ class Simulator {
   Summary logged_;
 };
 
-/// CLOCK_MONOTONIC in ns.
-std::int64_t monotonic_ns();
+using sim_control::monotonic_ns;
+using sim_control::to_timespec;
 
 }  // namespace robotd::piper::sim

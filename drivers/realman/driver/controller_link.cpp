@@ -7,15 +7,13 @@
 #include <future>
 #include <memory>
 #include <poll.h>
-#include <pthread.h>
-#include <sched.h>
 #include <span>
-#include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <system_error>
 #include <unistd.h>
 
 #include "driver/arm_fault.hpp"
+#include "robotd/kinematics/rotation.hpp"
 
 namespace robotd::realman {
 namespace {
@@ -28,18 +26,6 @@ constexpr auto kCallerSlack = std::chrono::seconds(1);
 constexpr double kStepMargin = 0.9;
 
 std::string errno_text(int error) { return std::generic_category().message(error); }
-
-/// R = Rz(rz)·Ry(ry)·Rx(rx) (fixed axes x, y, z), as a quaternion.
-std::array<double, 4> quaternion_xyzw(const std::array<double, 3>& euler_rad) {
-  const double cx = std::cos(euler_rad[0] / 2);
-  const double sx = std::sin(euler_rad[0] / 2);
-  const double cy = std::cos(euler_rad[1] / 2);
-  const double sy = std::sin(euler_rad[1] / 2);
-  const double cz = std::cos(euler_rad[2] / 2);
-  const double sz = std::sin(euler_rad[2] / 2);
-  return {sx * cy * cz - cx * sy * sz, cx * sy * cz + sx * cy * sz, cx * cy * sz - sx * sy * cz,
-          cx * cy * cz + sx * sy * sz};
-}
 
 driver::FaultInfo fault_of(std::int32_t code, const std::string& text) {
   driver::FaultInfo fault;
@@ -69,8 +55,6 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
     if (!bound) return bound.error();
     push_endpoint_ = bound.value();
   }
-  wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-  if (wake_fd_ < 0) return make_error(ErrorCode::kTransport, "cannot create an eventfd (" + errno_text(errno) + ")");
 
   tracker_ = RequestTracker{};
   splitter_.clear();
@@ -92,17 +76,11 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   next_stream_at_ = now;
   next_poll_at_ = now;
   last_stream_at_ = {};
-  stop_.store(false);
-  thread_ = std::thread([this] { run(); });
-  return {};
+  return io_.start("realman-link", settings.io_priority, [this] { run(); });
 }
 
 void ControllerLink::close() noexcept {
-  if (thread_.joinable()) {
-    stop_.store(true);
-    wake();
-    thread_.join();
-  }
+  io_.stop();
   std::vector<Outgoing> abandoned;
   {
     const std::lock_guard lock(queue_mutex_);
@@ -113,8 +91,6 @@ void ControllerLink::close() noexcept {
   }
   tcp_.reset();
   udp_.reset();
-  if (wake_fd_ >= 0) ::close(wake_fd_);
-  wake_fd_ = -1;
 }
 
 Result<ControllerLink::Reply> ControllerLink::request(const nlohmann::json& message, const RequestOptions& options) {
@@ -183,21 +159,9 @@ std::string ControllerLink::last_arm_status() const {
   return arm_status_;
 }
 
-void ControllerLink::wake() const {
-  if (wake_fd_ < 0) return;
-  const std::uint64_t one = 1;
-  [[maybe_unused]] const ssize_t written = ::write(wake_fd_, &one, sizeof(one));
-}
-
 void ControllerLink::run() noexcept {
-  pthread_setname_np(pthread_self(), "realman-link");
-  if (settings_.io_priority > 0) {
-    sched_param param{};
-    param.sched_priority = settings_.io_priority;
-    pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);  // best effort: diagnostics show the policy
-  }
   try {
-    while (!stop_.load() && !lost_) {
+    while (!io_.stopping() && !lost_) {
       const Clock::time_point now = Clock::now();
       serve(now);
       if (!lost_) wait_for_io(Clock::now());
@@ -210,9 +174,7 @@ void ControllerLink::run() noexcept {
 }
 
 void ControllerLink::serve(Clock::time_point now) {
-  std::uint64_t drained = 0;
-  while (::read(wake_fd_, &drained, sizeof(drained)) > 0) {
-  }
+  io_.drain();
   take_requests(now);
   read_tcp(now);
   if (udp_.is_open()) read_push();
@@ -238,7 +200,7 @@ void ControllerLink::wait_for_io(Clock::time_point now) {
   if (!settings_.push) until = std::min(until, next_poll_at_);
   if (const auto deadline = tracker_.next_deadline()) until = std::min(until, *deadline);
   std::array<pollfd, 3> fds{{
-      {.fd = wake_fd_, .events = POLLIN, .revents = 0},
+      {.fd = io_.wake_fd(), .events = POLLIN, .revents = 0},
       {.fd = tcp_.fd(), .events = static_cast<short>(POLLIN | (tcp_out_.empty() ? 0 : POLLOUT)), .revents = 0},
       {.fd = udp_.fd(), .events = POLLIN, .revents = 0},  // fd −1 (no push) is ignored by ppoll
   }};
@@ -374,8 +336,9 @@ void ControllerLink::poll_state(Clock::time_point now) {
             sample.errors = state.value().errors;
             sample.enabled.fill(true);  // get_current_arm_state carries no enable flags
             if (state.value().has_pose) {
-              sample.pose = driver::Pose{.position_m = state.value().pose.position_m,
-                                         .orientation_xyzw = quaternion_xyzw(state.value().pose.euler_rad)};
+              sample.pose =
+                  driver::Pose{.position_m = state.value().pose.position_m,
+                               .orientation_xyzw = kinematics::quaternion_xyzw_from_rpy(state.value().pose.euler_rad)};
             }
             publish(sample, Clock::now());
           },

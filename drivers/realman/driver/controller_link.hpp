@@ -17,7 +17,6 @@
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -27,6 +26,7 @@
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/result.hpp"
+#include "robotd/transport/io_thread.hpp"
 #include "robotd/transport/ip_socket.hpp"
 
 namespace robotd::realman {
@@ -100,7 +100,7 @@ class ControllerLink {
   /// controller is not reachable.
   Result<void> open(const LinkSettings& settings);
   void close() noexcept;
-  bool is_open() const { return thread_.joinable(); }
+  bool is_open() const { return io_.running(); }
 
   struct Reply {
     nlohmann::json body;
@@ -155,15 +155,13 @@ class ControllerLink {
   };
   void publish(const Sample& sample, Clock::time_point now);
   void lose_link(const std::string& why);
-  void wake() const;
+  void wake() const { io_.wake(); }
 
   LinkSettings settings_;
   transport::Socket tcp_;
   transport::Socket udp_;
-  int wake_fd_ = -1;
   transport::Endpoint push_endpoint_;
-  std::thread thread_;
-  std::atomic<bool> stop_{false};
+  transport::IoThread io_;
 
   // Between request() callers and the link thread.
   std::mutex queue_mutex_;

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "driver/realman_ops.hpp"
+#include "robotd/driver/position_targets.hpp"
 
 namespace robotd::realman {
 namespace {
@@ -174,16 +175,18 @@ Result<void> RealmanDriver::reset_zero(std::span<const int> /*joints*/) {
       "RealMan joints have absolute encoders; their zero is set with RealMan's tools, not through robotd");
 }
 
-driver::IoResult RealmanDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
+bool RealmanDriver::link_up(driver::FaultInfo& fault) const noexcept {
   if (!connected_.load(std::memory_order_acquire)) {
     fault = not_connected_fault_;
-    return driver::IoResult::kDisconnected;
+    return false;
   }
   const LinkHealth health = link_.health();
-  if (health.lost) {
-    fault = health.reason;
-    return driver::IoResult::kDisconnected;
-  }
+  if (health.lost) fault = health.reason;
+  return !health.lost;
+}
+
+driver::IoResult RealmanDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
+  if (!link_up(fault)) return driver::IoResult::kDisconnected;
   rt_feedback_ = link_.feedback();
   if (rt_feedback_.sequence == last_sequence_) return driver::IoResult::kNoNewData;
   last_sequence_ = rt_feedback_.sequence;
@@ -200,24 +203,10 @@ driver::IoResult RealmanDriver::read(driver::Feedback& out, driver::FaultInfo& f
 }
 
 driver::IoResult RealmanDriver::write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept {
-  if (!connected_.load(std::memory_order_acquire)) {
-    fault = not_connected_fault_;
-    return driver::IoResult::kDisconnected;
-  }
-  const LinkHealth health = link_.health();
-  if (health.lost) {
-    fault = health.reason;
-    return driver::IoResult::kDisconnected;
-  }
+  if (!link_up(fault)) return driver::IoResult::kDisconnected;
   StreamTarget target;
   target.estop = command.estop;
-  const std::size_t dof = std::min(params_.model.dof, command.joint_count);
-  for (std::size_t j = 0; j < params_.model.dof; ++j) {
-    const driver::JointCommand* joint = j < dof ? &command.joints[j] : nullptr;
-    const bool positioned = joint != nullptr && joint->kind == driver::JointCommandKind::kPosition;
-    target.joints_rad[j] = positioned ? joint->position_rad : rt_feedback_.position_rad[j];
-    target.active = target.active || (positioned && joint->owned);
-  }
+  target.active = driver::position_targets(command, params_.model.dof, rt_feedback_.position_rad, target.joints_rad);
   link_.publish_target(target);
   session_streaming_.store(target.active, std::memory_order_relaxed);
   if (rt_feedback_.fault.code != 0) {

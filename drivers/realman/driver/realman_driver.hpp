@@ -42,6 +42,8 @@ class RealmanDriver final : public driver::Driver {
   friend class RealmanOps;
 
   Result<void> connect_locked();
+  /// RT: false, with the reason in `fault`, while not connected or the link is lost.
+  bool link_up(driver::FaultInfo& fault) const noexcept;
   /// Reads the controller's model and firmware and checks the model against the config.
   Result<void> check_software();
   Result<void> start_push();

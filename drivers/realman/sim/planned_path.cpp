@@ -2,15 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "robotd/kinematics/tcp_line.hpp"
 
 namespace robotd::realman::sim {
 namespace {
-
-constexpr double kSampleStepM = 1e-3;
-constexpr double kSampleStepRad = 1e-2;
-/// Between two samples 1 mm apart no joint of a regular posture turns this far; more means the
-/// solver changed branches or the line crosses a singularity.
-constexpr double kMaxJointJumpRad = 0.2;
 
 double speed_fraction(int speed_percent) { return std::clamp(speed_percent, 1, 100) / 100.0; }
 
@@ -50,51 +47,27 @@ PlannedPath PlannedPath::joint_line(const JointValues& from, const JointValues& 
 
 Result<PlannedPath> PlannedPath::cartesian_line(const ArmKinematics& kinematics, const JointValues& from,
                                                 const EulerPose& to, int speed_percent) {
-  const Eigen::Isometry3d start = kinematics.flange(from);
-  const Eigen::Isometry3d goal = isometry_of(to);
-  const Eigen::Vector3d travel = goal.translation() - start.translation();
-  const Eigen::Quaterniond start_rotation(start.linear());
-  const Eigen::Quaterniond goal_rotation(goal.linear());
-  const double turn_rad = start_rotation.angularDistance(goal_rotation);
-  const auto steps = static_cast<std::size_t>(
-      std::max({1.0, std::ceil(travel.norm() / kSampleStepM), std::ceil(turn_rad / kSampleStepRad)}));
-
-  std::vector<JointValues> samples{from};
-  samples.reserve(steps + 1);
-  for (std::size_t k = 1; k <= steps; ++k) {
-    const double u = static_cast<double>(k) / static_cast<double>(steps);
-    Eigen::Isometry3d point = Eigen::Isometry3d::Identity();
-    point.translate(start.translation() + u * travel);
-    point.rotate(start_rotation.slerp(u, goal_rotation));
-    const auto joints = kinematics.solve(point, samples.back());
-    if (!joints) {
-      return make_error(ErrorCode::kRefused, "0x1003 unreachable: the line leaves the workspace " +
-                                                 std::to_string(static_cast<int>(u * 100)) + "% of the way");
-    }
-    for (std::size_t j = 0; j < kinematics.dof(); ++j) {
-      if (std::abs((*joints)[j] - samples.back()[j]) > kMaxJointJumpRad) {
-        return make_error(ErrorCode::kRefused, "0x1003 unreachable: joint " + std::to_string(j + 1) +
-                                                   " would jump near a singularity " +
-                                                   std::to_string(static_cast<int>(u * 100)) + "% of the way");
-      }
-    }
-    samples.push_back(*joints);
+  const kinematics::PointSolver solve = [&kinematics](const Eigen::Isometry3d& point, const JointValues& seed) {
+    return kinematics.solve(point, seed);
+  };
+  kinematics::TcpLine line =
+      kinematics::plan_tcp_line(kinematics.flange(from), isometry_of(to), from, kinematics.dof(), solve);
+  const std::string where = std::to_string(static_cast<int>(line.failed_fraction * 100)) + "% of the way";
+  switch (line.failure) {
+    case kinematics::TcpLine::Failure::kUnreachable:
+      return make_error(ErrorCode::kRefused, "0x1003 unreachable: the line leaves the workspace " + where);
+    case kinematics::TcpLine::Failure::kJointJump:
+      return make_error(ErrorCode::kRefused, "0x1003 unreachable: joint " + std::to_string(line.jumping_joint + 1) +
+                                                 " would jump near a singularity " + where);
+    case kinematics::TcpLine::Failure::kNone:
+      break;
   }
   const double fraction = speed_fraction(speed_percent);
   const double cruise_s =
-      std::max(travel.norm() / (kMaxLinearSpeedMS * fraction), turn_rad / (kMaxAngularSpeedRadS * fraction));
-  return PlannedPath(std::move(samples), cruise_s);
+      std::max(line.travel_m / (kMaxLinearSpeedMS * fraction), line.turn_rad / (kMaxAngularSpeedRadS * fraction));
+  return PlannedPath(std::move(line.samples), cruise_s);
 }
 
-JointValues PlannedPath::at(double t_s) const {
-  const double u = profile_.progress(t_s) * static_cast<double>(samples_.size() - 1);
-  const auto below = std::min(static_cast<std::size_t>(u), samples_.size() - 2);
-  const double within = u - static_cast<double>(below);
-  JointValues joints{};
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    joints[j] = samples_[below][j] + within * (samples_[below + 1][j] - samples_[below][j]);
-  }
-  return joints;
-}
+JointValues PlannedPath::at(double t_s) const { return kinematics::joints_along(samples_, profile_.progress(t_s)); }
 
 }  // namespace robotd::realman::sim

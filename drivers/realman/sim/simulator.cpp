@@ -21,17 +21,7 @@ constexpr int kMaxReadsPerPass = 64;
 /// A client that reads nothing while this much is queued for it is cut off.
 constexpr std::size_t kMaxQueuedBytes = std::size_t{4} * 1024 * 1024;
 
-timespec to_timespec(std::int64_t ns) {
-  return timespec{.tv_sec = static_cast<time_t>(ns / 1'000'000'000), .tv_nsec = static_cast<long>(ns % 1'000'000'000)};
-}
-
 }  // namespace
-
-std::int64_t monotonic_ns() {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
 
 Simulator::Simulator(SimOptions options, const ArmModel& model)
     : options_(std::move(options)), controller_(options_, model, monotonic_ns()) {}

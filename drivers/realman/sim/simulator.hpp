@@ -16,6 +16,7 @@
 #include "codec/realman_codec.hpp"
 #include "controller.hpp"
 #include "robotd/sim_control/control_server.hpp"
+#include "robotd/sim_control/sim_clock.hpp"
 #include "robotd/transport/ip_socket.hpp"
 #include "sim_options.hpp"
 
@@ -84,7 +85,7 @@ class Simulator {
   std::uint64_t garbage_sent_ = 0;
 };
 
-/// CLOCK_MONOTONIC in ns.
-std::int64_t monotonic_ns();
+using sim_control::monotonic_ns;
+using sim_control::to_timespec;
 
 }  // namespace robotd::realman::sim

@@ -24,7 +24,9 @@ using namespace std::chrono_literals;
 using driver::IoResult;
 using driver::JointCommandKind;
 using testing::DriverLoop;
+using testing::joints_near;
 using testing::Parol6SimProcess;
+using testing::position_frame;
 
 nlohmann::json driver_params(const std::string& pty) { return {{"serial", {{"device", pty}, {"baud", 3000000}}}}; }
 
@@ -34,22 +36,6 @@ JointVector standby_rad() {
     q[static_cast<std::size_t>(j)] = steps_to_rad(j, joint_units()[static_cast<std::size_t>(j)].standby_steps);
   }
   return q;
-}
-
-driver::CommandFrame positions(const JointVector& q, bool owned = true) {
-  driver::CommandFrame frame;
-  frame.joint_count = kJoints;
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    frame.joints[j] = {.kind = JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
-  }
-  return frame;
-}
-
-bool near(const driver::Feedback& feedback, const JointVector& q, double tolerance) {
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    if (std::fabs(feedback.joints[j].position_rad - q[j]) > tolerance) return false;
-  }
-  return true;
 }
 
 class Parol6DriverTest : public ::testing::Test {
@@ -106,7 +92,7 @@ TEST_F(Parol6DriverTest, StreamedPositionsMoveTheSteppersSmoothly) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
   const JointVector start = standby_rad();
-  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), start, 1e-3); }));
   // A 1 kHz ramp like robotd's limiter makes: 0.3 rad on J1 over 1 s.
   const auto t0 = std::chrono::steady_clock::now();
   double worst_lag = 0;
@@ -115,14 +101,14 @@ TEST_F(Parol6DriverTest, StreamedPositionsMoveTheSteppersSmoothly) {
     if (t > 1.2) break;
     JointVector target = start;
     target[0] += 0.3 * std::min(t, 1.0);
-    loop.set_command(positions(target));
+    loop.set_command(position_frame(target));
     if (t > 0.1 && t < 1.0)
       worst_lag = std::max(worst_lag, std::fabs(loop.feedback().joints[0].position_rad - target[0]));
     std::this_thread::sleep_for(1ms);
   }
   JointVector end = start;
   end[0] += 0.3;
-  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), end, 2e-3); }));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), end, 2e-3); }));
   // The board is fed the target one exchange ahead with its speed: it follows within about
   // one exchange of motion (0.3 rad/s × 10 ms = 3 mrad) plus a reply's age.
   EXPECT_LT(worst_lag, 0.05)
@@ -135,7 +121,7 @@ TEST_F(Parol6DriverTest, StreamedPositionsMoveTheSteppersSmoothly) {
 TEST_F(Parol6DriverTest, WithoutASessionTheBoardIsLeftIdle) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
-  loop.set_command(positions(standby_rad(), /*owned=*/false));
+  loop.set_command(position_frame(standby_rad(), /*owned=*/false));
   std::this_thread::sleep_for(100ms);
   const nlohmann::json state = sim_.control({{"op", "state"}});
   EXPECT_EQ(state["command"], 255) << state.dump();
@@ -144,7 +130,7 @@ TEST_F(Parol6DriverTest, WithoutASessionTheBoardIsLeftIdle) {
 TEST_F(Parol6DriverTest, EstopInputIsReportedAndDisablesTheBoard) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
-  loop.set_command(positions(standby_rad()));
+  loop.set_command(position_frame(standby_rad()));
   ASSERT_TRUE(sim_.control({{"op", "estop"}, {"pressed", true}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().estop_input; }));
   EXPECT_TRUE(loop.wait_for([&](DriverLoop&) {
@@ -160,19 +146,19 @@ TEST_F(Parol6DriverTest, HomeRunsTheBoardsSequence) {
   const auto homed = driver_.call("home", {{"wait", true}});
   ASSERT_TRUE(homed) << homed.error().message;
   EXPECT_TRUE(homed.value()["homed"].get<bool>());
-  EXPECT_TRUE(near(loop.feedback(), standby_rad(), 1e-3));
+  EXPECT_TRUE(joints_near(loop.feedback(), standby_rad(), 1e-3));
 }
 
 TEST_F(Parol6DriverTest, JogAndMovesRunAndStopAtTheirEnd) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
   const JointVector start = standby_rad();
-  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), start, 1e-3); }));
   const auto jog = driver_.call("jog", {{"joint", 4}, {"velocity_rad_s", 0.5}, {"duration_s", 0.4}});
   ASSERT_TRUE(jog) << jog.error().message;
   JointVector jogged = start;
   jogged[3] += 0.2;
-  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), jogged, 3e-3); }))
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), jogged, 3e-3); }))
       << loop.feedback().joints[3].position_rad;
 
   JointVector target = start;
@@ -180,7 +166,7 @@ TEST_F(Parol6DriverTest, JogAndMovesRunAndStopAtTheirEnd) {
   target[2] += 0.2;
   const auto move = driver_.call("move_joints", {{"joints_rad", target}, {"duration_s", 0.6}});
   ASSERT_TRUE(move) << move.error().message;
-  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), target, 3e-3); }));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), target, 3e-3); }));
 
   const auto tool = driver_.call("fk", nullptr);
   ASSERT_TRUE(tool);
@@ -199,7 +185,7 @@ TEST_F(Parol6DriverTest, MovePoseReachesThePoseWithEitherProfile) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
   const JointVector start = standby_rad();
-  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 1e-3); }));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), start, 1e-3); }));
   JointVector elsewhere = start;
   elsewhere[0] -= 0.3;
   elsewhere[1] += 0.2;
@@ -222,7 +208,7 @@ TEST_F(Parol6DriverTest, MovePoseReachesThePoseWithEitherProfile) {
              std::fabs(tool.value()["tool"]["z_m"].get<double>() - target.z_m) < 5e-4;
     })) << profile;
     ASSERT_TRUE(driver_.call("move_joints", {{"joints_rad", start}, {"duration_s", 0.8}}));
-    ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), start, 3e-3); }));
+    ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), start, 3e-3); }));
   }
   const auto unreachable = driver_.call(
       "move_pose", {{"x_m", 0.9}, {"y_m", 0}, {"z_m", 0.2}, {"roll_rad", 0}, {"pitch_rad", 0}, {"yaw_rad", 0}});
@@ -233,7 +219,7 @@ TEST_F(Parol6DriverTest, MovePoseReachesThePoseWithEitherProfile) {
 TEST_F(Parol6DriverTest, MovesAreRefusedWhileASessionDrives) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
-  loop.set_command(positions(standby_rad()));
+  loop.set_command(position_frame(standby_rad()));
   std::this_thread::sleep_for(50ms);
   const auto refused = driver_.call("jog", {{"joint", 1}, {"velocity_rad_s", 0.1}});
   ASSERT_FALSE(refused);
@@ -312,7 +298,7 @@ TEST_F(Parol6DriverTest, DisconnectLeavesTheBoardIdle) {
     DriverLoop loop(driver_, kJoints);
     JointVector target = standby_rad();
     target[0] += 0.05;
-    loop.set_command(positions(target));
+    loop.set_command(position_frame(target));
     std::this_thread::sleep_for(200ms);
   }
   driver_.disconnect();

@@ -9,10 +9,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
-#include <spawn.h>
 #include <string>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -22,8 +20,6 @@
 #include "codec/parol6_frames.hpp"
 #include "parol6_sim_process.hpp"
 #include "robotd/transport/serial_port.hpp"
-
-extern char** environ;  // NOLINT
 
 namespace robotd::parol6 {
 namespace {
@@ -130,22 +126,7 @@ struct Cycle {
 
 /// Runs the simulator with `arguments` to its end; its exit status (stdout to /dev/null).
 int run_to_exit(const std::vector<std::string>& arguments) {
-  std::vector<std::string> args{Parol6SimProcess::executable()};
-  args.insert(args.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return -1;
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return testing::run_to_exit(Parol6SimProcess::executable(), arguments);
 }
 
 class Parol6SimTest : public ::testing::Test {

@@ -3,15 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fcntl.h>
 #include <functional>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <random>
-#include <spawn.h>
 #include <string>
-#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -22,8 +19,6 @@
 #include "kinematics/piper_kinematics.hpp"
 #include "piper_sim_process.hpp"
 #include "robotd/transport/can_transport.hpp"
-
-extern char** environ;  // NOLINT
 
 namespace robotd::piper {
 namespace {
@@ -85,22 +80,7 @@ CanLinkConfig standin(const std::string& path) {
 
 /// Runs the simulator with `arguments` to its end; its exit status (stdout to /dev/null).
 int run_to_exit(const std::vector<std::string>& arguments) {
-  std::vector<std::string> args{PiperSimProcess::executable()};
-  args.insert(args.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return -1;
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return testing::run_to_exit(PiperSimProcess::executable(), arguments);
 }
 
 class PiperSimTest : public ::testing::Test {

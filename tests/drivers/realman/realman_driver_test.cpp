@@ -23,7 +23,10 @@ namespace {
 using namespace std::chrono_literals;
 using driver::IoResult;
 using driver::JointCommandKind;
+using testing::diagnostic;
 using testing::DriverLoop;
+using testing::joints_near;
+using testing::position_frame;
 using testing::RealmanSimProcess;
 
 constexpr std::size_t kDof = 6;
@@ -37,29 +40,6 @@ nlohmann::json driver_params(std::uint16_t port, const nlohmann::json& extra = n
                         {"push", {{"ip", "127.0.0.1"}, {"port", 0}}}};
   params.update(extra);
   return params;
-}
-
-driver::CommandFrame positions(const std::array<double, kDof>& q, bool owned = true) {
-  driver::CommandFrame frame;
-  frame.joint_count = kDof;
-  for (std::size_t j = 0; j < kDof; ++j) {
-    frame.joints[j] = {.kind = JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
-  }
-  return frame;
-}
-
-bool near(const driver::Feedback& feedback, const std::array<double, kDof>& q, double tolerance) {
-  for (std::size_t j = 0; j < kDof; ++j) {
-    if (std::fabs(feedback.joints[j].position_rad - q[j]) > tolerance) return false;
-  }
-  return true;
-}
-
-std::string diagnostic(const driver::Driver& driver, const std::string& key) {
-  for (const auto& [name, value] : driver.diagnostics()) {
-    if (name == key) return value;
-  }
-  return "(no " + key + ")";
 }
 
 class RealmanDriverTest : public ::testing::Test {
@@ -179,13 +159,13 @@ TEST_F(RealmanDriverTest, StreamedPositionsMoveTheArmThroughMovejCanfdAtTheConfi
   for (auto next = t0; std::chrono::steady_clock::now() - t0 < 1s; next += 1ms) {
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     target[0] = j1_start + 0.3 * std::min(t, 1.0);
-    loop.set_command(positions(target));
+    loop.set_command(position_frame(target));
     if (t > 0.1) worst_lag = std::max(worst_lag, target[0] - loop.feedback().joints[0].position_rad);
     std::this_thread::sleep_until(next);
   }
   target[0] = j1_start + 0.3;
-  loop.set_command(positions(target));
-  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), target, 1e-3); }))
+  loop.set_command(position_frame(target));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), target, 1e-3); }))
       << loop.feedback().joints[0].position_rad;
   const nlohmann::json state = sim_state();
   const nlohmann::json& pass = state["pass_through"];
@@ -206,8 +186,8 @@ TEST_F(RealmanDriverTest, AFarTargetIsApproachedWithinThePassThroughStepLimit) {
   std::array<double, kDof> target{};
   for (std::size_t j = 0; j < kDof; ++j) target[j] = loop.feedback().joints[j].position_rad;
   target[1] += 1.0;  // a 1 rad step at once: the controller would ignore it as one frame
-  loop.set_command(positions(target));
-  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), target, 1e-3); }, 5s));
+  loop.set_command(position_frame(target));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), target, 1e-3); }, 5s));
   EXPECT_EQ(sim_state()["pass_through"]["ignored"].get<int>(), 0) << sim_state().dump();
   const std::string frames = diagnostic(driver_, "stream_frames");
   EXPECT_EQ(frames.find("(0 limited"), std::string::npos) << frames;
@@ -220,9 +200,9 @@ TEST_F(RealmanDriverTest, EstopSendsTheQuickStopAndAReleaseMidMotionTheSlowStop)
   std::array<double, kDof> target{};
   for (std::size_t j = 0; j < kDof; ++j) target[j] = loop.feedback().joints[j].position_rad;
   target[0] += 0.5;
-  loop.set_command(positions(target));
+  loop.set_command(position_frame(target));
   ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return l.feedback().joints[0].position_rad > target[0] - 0.45; }));
-  driver::CommandFrame stop = positions(target);
+  driver::CommandFrame stop = position_frame(target);
   stop.estop = true;
   loop.set_command(stop);
   EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return sim_state()["commands"].value("set_arm_stop", 0) == 1; }))
@@ -231,18 +211,18 @@ TEST_F(RealmanDriverTest, EstopSendsTheQuickStopAndAReleaseMidMotionTheSlowStop)
   std::this_thread::sleep_for(100ms);
   EXPECT_EQ(sim_state()["pass_through"]["frames"].get<int>(), frames_at_stop) << "streamed during the e-stop";
 
-  loop.set_command(positions(target));  // reset: streaming resumes from where the arm is
-  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), target, 1e-3); }));
-  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return near(l.feedback(), target, 1e-3); }));
+  loop.set_command(position_frame(target));  // reset: streaming resumes from where the arm is
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), target, 1e-3); }));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), target, 1e-3); }));
   std::this_thread::sleep_for(100ms);
-  loop.set_command(positions(target, /*owned=*/false));  // released at rest: nothing to stop
+  loop.set_command(position_frame(target, /*owned=*/false));  // released at rest: nothing to stop
   std::this_thread::sleep_for(100ms);
   EXPECT_EQ(sim_state()["commands"].value("set_arm_slow_stop", 0), 0) << sim_state().dump();
 
   target[0] -= 0.8;  // a new session, released on the way
-  loop.set_command(positions(target));
+  loop.set_command(position_frame(target));
   ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return l.feedback().joints[0].position_rad < target[0] + 0.6; }));
-  loop.set_command(positions(target, /*owned=*/false));
+  loop.set_command(position_frame(target, /*owned=*/false));
   std::this_thread::sleep_for(50ms);
   const int frames_at_release = sim_state()["pass_through"]["frames"].get<int>();
   const double at_release = loop.feedback().joints[0].position_rad;
@@ -294,7 +274,7 @@ TEST_F(RealmanDriverTest, PlannedMovesBlockUntilTheArmArrivesWithoutHoldingUpThe
   EXPECT_TRUE(result.value()["completed"].get<bool>()) << result.value().dump();
   const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GT(took_s, 0.05);
-  EXPECT_TRUE(near(loop.feedback(), goal, 2e-3)) << loop.feedback().joints[4].position_rad;
+  EXPECT_TRUE(joints_near(loop.feedback(), goal, 2e-3)) << loop.feedback().joints[4].position_rad;
 }
 
 TEST_F(RealmanDriverTest, OpsCheckTheirArgumentsBeforeSendingAnything) {
@@ -376,7 +356,7 @@ TEST_F(RealmanDriverTest, AClosedConnectionIsALostLinkAndRecoverReconnectsWithou
   ASSERT_TRUE(recovered) << recovered.error().message;
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
   std::this_thread::sleep_for(200ms);
-  EXPECT_TRUE(near(loop.feedback(), held, 1e-3)) << "the arm moved across the reconnect";
+  EXPECT_TRUE(joints_near(loop.feedback(), held, 1e-3)) << "the arm moved across the reconnect";
 }
 
 TEST_F(RealmanDriverTest, ASilentPushIsALostLinkThatSaysWhereItWasExpected) {

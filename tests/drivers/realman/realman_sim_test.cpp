@@ -6,15 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <fcntl.h>
 #include <functional>
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <spawn.h>
 #include <string>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <thread>
 #include <tuple>
 #include <unistd.h>
@@ -25,8 +22,6 @@
 #include "codec/realman_codec.hpp"
 #include "realman_sim_process.hpp"
 #include "robotd/transport/ip_socket.hpp"
-
-extern char** environ;  // NOLINT
 
 namespace robotd::realman {
 namespace {
@@ -200,23 +195,7 @@ class PushReceiver {
 
 /// Runs the simulator with `arguments` to its end; its exit status (stdout and stderr to /dev/null).
 int run_to_exit(const std::vector<std::string>& arguments) {
-  std::vector<std::string> args{RealmanSimProcess::executable()};
-  args.insert(args.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (auto& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return -1;
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return testing::run_to_exit(RealmanSimProcess::executable(), arguments);
 }
 
 class RealmanSimTest : public ::testing::Test {

@@ -1,0 +1,253 @@
+// The report ports' packets (§5.1 "real" 30003, §5.2 "normal" 30001, §5.4 "realtime" 30000):
+// the size-prefixed stream, each kind's layout, and the SDK's sanity checks.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "wire_fields.hpp"
+#include "xarm_codec.hpp"
+
+namespace robotd::xarm {
+namespace {
+
+constexpr std::size_t kSizeBytes = 4;
+constexpr std::size_t kMinReportBytes = 8;
+constexpr std::size_t kWrenchBytes = 6 * kF32Bytes;
+
+struct KindInfo {
+  ReportKind kind;
+  std::string_view name;
+  std::uint16_t port;
+  std::size_t short_size;  // real without F/T, normal on older firmware, realtime per the doc
+  std::size_t long_size;   // real with F/T, normal, realtime per the SDK
+};
+
+constexpr auto kKinds = std::to_array<KindInfo>({
+    {ReportKind::kReal, "real", 30003, 87, 135},
+    {ReportKind::kNormal, "normal", 30001, 133, 145},
+    {ReportKind::kRealtime, "realtime", 30000, 784, 804},
+});
+
+const KindInfo& info(ReportKind kind) {
+  return *std::find_if(kKinds.begin(), kKinds.end(), [kind](const KindInfo& entry) { return entry.kind == kind; });
+}
+
+// Offsets shared by real and normal (§5.1, §5.2).
+namespace basic {
+constexpr std::size_t kStateMode = 4;
+constexpr std::size_t kPosition = 7;
+constexpr std::size_t kEffort = 59;
+constexpr std::size_t kForceTorqueFiltered = 87;  // real, 135 bytes
+constexpr std::size_t kForceTorqueRaw = 111;
+constexpr std::size_t kBrakeMask = 87;  // normal
+}  // namespace basic
+
+// §5.4.
+namespace realtime {
+constexpr std::size_t kTimestamp = 4;
+constexpr std::size_t kStateMode = 12;
+constexpr std::size_t kPosition = 116;
+constexpr std::size_t kVelocity = 144;
+constexpr std::size_t kTorque = 228;
+constexpr std::size_t kTcpPose = 472;
+constexpr std::size_t kForceTorqueRaw = 688;
+constexpr std::size_t kForceTorqueFiltered = 712;
+}  // namespace realtime
+
+constexpr int kStateLimit = 10;  // the SDK drops packets with state ≥ 10 or mode ≥ 12
+constexpr int kModeLimit = 12;
+constexpr std::uint8_t kNibble = 0x0F;
+
+/// A reader from `offset`; empty past the end (parse_report checks sizes first).
+ByteReader reader_at(ByteView packet, std::size_t offset) {
+  return ByteReader(offset <= packet.size() ? packet.subspan(offset) : ByteView{});
+}
+
+std::array<double, 6> read_wrench(ByteReader reader) {
+  std::array<double, 6> wrench{};
+  for (double& value : wrench) value = read_f32(reader);
+  return wrench;
+}
+
+/// Writes `field` into the zero-filled packet at `offset`.
+void put(Bytes& packet, std::size_t offset, const ByteWriter& field) {
+  std::copy(field.data().begin(), field.data().end(), packet.begin() + static_cast<std::ptrdiff_t>(offset));
+}
+
+ByteWriter wrench_field(const std::array<double, 6>& wrench) {
+  ByteWriter field;
+  for (const double value : wrench) field.f32_le(value);
+  return field;
+}
+
+std::uint8_t state_mode_byte(const Report& report) {
+  return static_cast<std::uint8_t>(((report.mode & kNibble) << 4) | (report.state & kNibble));
+}
+
+/// state_mode, cmd_num, joints, pose, effort: offsets 4..86 of real and normal.
+ByteWriter basic_head(const Report& report) {
+  ByteWriter head;
+  head.u8(state_mode_byte(report)).u16_be(report.cmd_num);
+  write_joints(head, report.position_rad);
+  write_pose(head, report.tcp_pose);
+  write_joints(head, report.effort);
+  return head;
+}
+
+}  // namespace
+
+std::string_view report_kind_name(ReportKind kind) { return info(kind).name; }
+
+std::optional<ReportKind> parse_report_kind(std::string_view name) {
+  const auto found =
+      std::find_if(kKinds.begin(), kKinds.end(), [name](const KindInfo& entry) { return entry.name == name; });
+  if (found == kKinds.end()) return std::nullopt;
+  return found->kind;
+}
+
+std::uint16_t default_report_port(ReportKind kind) { return info(kind).port; }
+
+void ReportSplitter::append(ByteView bytes) {
+  if (broken_) return;  // nothing after a lost framing can be trusted until clear()
+  buffer_.insert(buffer_.end(), bytes.begin(), bytes.end());
+}
+
+Result<std::optional<Bytes>> ReportSplitter::next() {
+  if (broken_) return make_error(ErrorCode::kInvalidArgument, *broken_);
+  ByteReader reader(buffer_);
+  const auto size = reader.u32_be();
+  if (!size) return std::optional<Bytes>{};
+  if (*size < kMinReportBytes || *size > kMaxReportBytes) {
+    broken_ = "report size field " + std::to_string(*size) + " is outside " + std::to_string(kMinReportBytes) + ".." +
+              std::to_string(kMaxReportBytes) + ": the report stream lost its framing (reconnect)";
+    buffer_.clear();
+    return make_error(ErrorCode::kInvalidArgument, *broken_);
+  }
+  if (buffer_.size() < *size) return std::optional<Bytes>{};
+  const auto packet_end = buffer_.begin() + static_cast<std::ptrdiff_t>(*size);
+  Bytes packet(buffer_.begin(), packet_end);
+  buffer_.erase(buffer_.begin(), packet_end);
+  return std::optional<Bytes>(std::move(packet));
+}
+
+void ReportSplitter::clear() {
+  buffer_.clear();
+  broken_.reset();
+}
+
+Result<Report> parse_report(ByteView packet, ReportKind kind) {
+  const KindInfo& kind_info = info(kind);
+  const std::string what = std::string(kind_info.name) + " report";
+  ByteReader size_reader(packet);
+  const auto size = size_reader.u32_be();
+  if (!size) return size_error(what, "byte", packet.size(), kSizeBytes, true);
+  if (*size != packet.size()) {
+    return make_error(ErrorCode::kInvalidArgument, what + " size field says " + std::to_string(*size) +
+                                                       " bytes but the packet has " + std::to_string(packet.size()));
+  }
+  if (packet.size() != kind_info.short_size && packet.size() != kind_info.long_size) {
+    return make_error(ErrorCode::kInvalidArgument, what + " has " + std::to_string(packet.size()) +
+                                                       " bytes, expected " + std::to_string(kind_info.short_size) +
+                                                       " or " + std::to_string(kind_info.long_size));
+  }
+
+  Report report;
+  const bool is_realtime = kind == ReportKind::kRealtime;
+  ByteReader head = reader_at(packet, is_realtime ? realtime::kStateMode : basic::kStateMode);
+  const std::uint8_t state_mode = head.u8().value_or(0);
+  report.state = state_mode & kNibble;
+  report.mode = state_mode >> 4;
+  if (report.state >= kStateLimit || report.mode >= kModeLimit) {
+    return make_error(ErrorCode::kInvalidArgument, what + " has state " + std::to_string(report.state) + " and mode " +
+                                                       std::to_string(report.mode) +
+                                                       ", expected a state below 10 and a mode below 12");
+  }
+  report.cmd_num = head.u16_be().value_or(0);
+
+  if (is_realtime) {
+    report.timestamp_us = reader_at(packet, realtime::kTimestamp).u64_be().value_or(0);
+    report.has_timestamp = true;
+    ByteReader position = reader_at(packet, realtime::kPosition);
+    report.position_rad = read_joints(position);
+    ByteReader velocity = reader_at(packet, realtime::kVelocity);
+    report.velocity_rad_s = read_joints(velocity);
+    report.has_velocity = true;
+    ByteReader torque = reader_at(packet, realtime::kTorque);
+    report.effort = read_joints(torque);
+    ByteReader pose = reader_at(packet, realtime::kTcpPose);
+    report.tcp_pose = read_pose(pose);
+    report.force_torque = read_wrench(reader_at(packet, realtime::kForceTorqueFiltered));
+    report.has_force_torque = true;
+    return report;
+  }
+
+  ByteReader body = reader_at(packet, basic::kPosition);
+  report.position_rad = read_joints(body);
+  report.tcp_pose = read_pose(body);
+  report.effort = read_joints(body);
+  if (kind == ReportKind::kReal && packet.size() == kind_info.long_size) {
+    report.force_torque = read_wrench(reader_at(packet, basic::kForceTorqueFiltered));
+    report.has_force_torque = true;
+  }
+  if (kind == ReportKind::kNormal) {
+    ByteReader codes = reader_at(packet, basic::kBrakeMask);
+    report.brake_mask = codes.u8().value_or(0);
+    report.enable_mask = codes.u8().value_or(0);
+    report.error_code = codes.u8().value_or(0);
+    report.warning_code = codes.u8().value_or(0);
+    report.has_codes = true;
+  }
+  return report;
+}
+
+Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torque) {
+  const KindInfo& kind_info = info(kind);
+  const bool long_real = kind == ReportKind::kReal && with_force_torque;
+  // Fields Report does not model (targets, TCP offset, payload, sensitivities …) go out as zeros,
+  // which pass the SDK's checks (sensitivities 0–5).
+  const std::size_t size = kind == ReportKind::kNormal || long_real ? kind_info.long_size : kind_info.short_size;
+  Bytes packet(size, 0);
+  put(packet, 0, ByteWriter().u32_be(static_cast<std::uint32_t>(size)));
+
+  if (kind == ReportKind::kRealtime) {
+    put(packet, realtime::kTimestamp,
+        ByteWriter().u64_be(report.timestamp_us).u8(state_mode_byte(report)).u16_be(report.cmd_num));
+    const auto joints = [](const JointValues& values) {
+      ByteWriter field;
+      write_joints(field, values);
+      return field;
+    };
+    put(packet, realtime::kPosition, joints(report.position_rad));
+    put(packet, realtime::kVelocity, joints(report.velocity_rad_s));
+    put(packet, realtime::kTorque, joints(report.effort));
+    ByteWriter pose;
+    write_pose(pose, report.tcp_pose);
+    put(packet, realtime::kTcpPose, pose);
+    // A simulated sensor has no noise: raw and filtered wrench are the same.
+    put(packet, realtime::kForceTorqueRaw, wrench_field(report.force_torque));
+    put(packet, realtime::kForceTorqueFiltered, wrench_field(report.force_torque));
+    return packet;
+  }
+
+  put(packet, basic::kStateMode, basic_head(report));
+  if (long_real) {
+    put(packet, basic::kForceTorqueFiltered, wrench_field(report.force_torque));
+    put(packet, basic::kForceTorqueRaw, wrench_field(report.force_torque));
+  }
+  if (kind == ReportKind::kNormal) {
+    put(packet, basic::kBrakeMask,
+        ByteWriter()
+            .u8(report.brake_mask)
+            .u8(report.enable_mask)
+            .u8(static_cast<std::uint8_t>(report.error_code))
+            .u8(static_cast<std::uint8_t>(report.warning_code)));
+  }
+  return packet;
+}
+
+}  // namespace robotd::xarm
