@@ -18,6 +18,8 @@ constexpr double kMaxJointJerk = 500.0;  // rad/s³, §7's 28647 °/s³
 constexpr double kMaxSleepSeconds = 3600.0;
 constexpr int kAllJoints = 8;
 constexpr int kBoundDigits = 5;  // π shows as 3.1416
+/// fp32 moves an angle of up to 2π by at most 2.4e-7 rad; no joint notices 1e-6 rad.
+constexpr double kLimitRoundingRad = 1e-6;
 
 /// The shortest text that reads back as `value` ("0.1", "nan", "-inf"), or `digits` significant
 /// digits when given.
@@ -79,12 +81,11 @@ Result<void> check_sleep(double seconds) { return check_range("sleep time", seco
 
 Result<void> check_joints_within(const JointValues& joints_rad, const ArmModel& model) {
   for (std::size_t j = 0; j < model.dof && j < kMaxDof; ++j) {
-    const std::string argument = "joint " + std::to_string(j + 1) + " angle";
-    if (auto checked =
-            check_range(argument, joints_rad[j], model.min_rad[j], model.max_rad[j], true, "rad", model.display);
-        !checked) {
-      return checked;
-    }
+    const double angle = joints_rad[j];
+    if (angle >= model.min_rad[j] - kLimitRoundingRad && angle <= model.max_rad[j] + kLimitRoundingRad) continue;
+    // The message names the limits themselves, not the forgiven ones.
+    return check_range("joint " + std::to_string(j + 1) + " angle", angle, model.min_rad[j], model.max_rad[j], true,
+                       "rad", model.display);
   }
   return {};
 }

@@ -17,6 +17,7 @@ namespace robotd::xarm {
 namespace {
 
 constexpr std::size_t kVersionBytes = 40;
+constexpr std::size_t kRobotSnBytes = 40;
 constexpr std::string_view kVersionLayout = "axis,type,robotSN,controlboxSN,vMAJ.MIN.REV";
 constexpr std::size_t kServoPairsBytes = 16;
 constexpr std::size_t kServoStatusByte = 1;  // the doc example's leading execution status
@@ -31,6 +32,13 @@ std::string_view trimmed(std::string_view text) {
   const auto first = text.find_first_not_of(' ');
   if (first == std::string_view::npos) return {};
   return text.substr(first, text.find_last_not_of(' ') - first + 1);
+}
+
+/// Text NUL padded into `size` bytes, cut at `size`.
+Bytes padded_text(const std::string& text, std::size_t size) {
+  Bytes data(size, 0);
+  std::copy_n(text.begin(), std::min(text.size(), size), data.begin());
+  return data;
 }
 
 /// The text as printable ASCII, for quoting what a controller sent.
@@ -93,15 +101,29 @@ Result<Version> parse_version(ByteView data) {
 Bytes encode_version(const Version& version) {
   const std::string text = std::to_string(version.axes) + "," + std::to_string(version.type) + "," + version.robot_sn +
                            "," + version.control_box_sn + ",v" + version.firmware;
-  Bytes data(kVersionBytes, 0);
-  std::copy_n(text.begin(), std::min(text.size(), kVersionBytes), data.begin());  // cut at 40 bytes
-  return data;
+  return padded_text(text, kVersionBytes);
+}
+
+Result<SerialNumbers> parse_robot_sn(ByteView data) {
+  if (auto checked = check_data("get_robot_sn", data, kRobotSnBytes); !checked) return checked.error();
+  const std::string_view text(reinterpret_cast<const char*>(data.data()), kRobotSnBytes);
+  const auto robot_end = std::min(text.find('\0'), text.size());
+  // A robot SN that fills all 40 bytes leaves no room for the control box's.
+  const std::string_view rest = text.substr(std::min(robot_end + 1, text.size()));
+  return SerialNumbers{.robot_sn = std::string(trimmed(text.substr(0, robot_end))),
+                       .control_box_sn = std::string(trimmed(rest.substr(0, rest.find('\0'))))};
+}
+
+Bytes encode_robot_sn(const SerialNumbers& serials) {
+  return padded_text(serials.robot_sn + '\0' + serials.control_box_sn, kRobotSnBytes);
 }
 
 Result<int> parse_state(ByteView data) {
   if (auto checked = check_data("get_state", data, 1); !checked) return checked.error();
   return static_cast<int>(data[0]);
 }
+
+Bytes encode_state(int state) { return ByteWriter().u8(static_cast<std::uint8_t>(state)).take(); }
 
 Result<std::uint16_t> parse_cmdnum(ByteView data) {
   if (auto checked = check_data("command count", data, 2); !checked) return checked.error();
@@ -148,6 +170,8 @@ Result<bool> parse_limit_flag(ByteView data) {
   if (auto checked = check_data("is_joint_limit", data, 1); !checked) return checked.error();
   return data[0] != 0;
 }
+
+Bytes encode_limit_flag(bool outside) { return ByteWriter().u8(outside ? 1 : 0).take(); }
 
 Result<std::array<ServoStatus, 8>> parse_servo_dbmsg(ByteView data) {
   if (data.size() != kServoPairsBytes && data.size() != kServoPairsBytes + kServoStatusByte) {

@@ -44,13 +44,16 @@ constexpr std::size_t kPosition = 7;
 constexpr std::size_t kEffort = 59;
 constexpr std::size_t kForceTorqueFiltered = 87;  // real, 135 bytes
 constexpr std::size_t kForceTorqueRaw = 111;
-constexpr std::size_t kBrakeMask = 87;  // normal
+// Normal, from here in order: masks, codes, TCP offset, payload, sensitivities, gravity direction.
+constexpr std::size_t kBrakeMask = 87;
 }  // namespace basic
 
 // §5.4.
 namespace realtime {
 constexpr std::size_t kTimestamp = 4;
 constexpr std::size_t kStateMode = 12;
+constexpr std::size_t kTargetPosition = 32;
+constexpr std::size_t kTargetVelocity = 60;
 constexpr std::size_t kPosition = 116;
 constexpr std::size_t kVelocity = 144;
 constexpr std::size_t kTorque = 228;
@@ -79,6 +82,12 @@ void put(Bytes& packet, std::size_t offset, const ByteWriter& field) {
   std::copy(field.data().begin(), field.data().end(), packet.begin() + static_cast<std::ptrdiff_t>(offset));
 }
 
+ByteWriter joints_field(const JointValues& values) {
+  ByteWriter field;
+  write_joints(field, values);
+  return field;
+}
+
 ByteWriter wrench_field(const std::array<double, 6>& wrench) {
   ByteWriter field;
   for (const double value : wrench) field.f32_le(value);
@@ -97,6 +106,22 @@ ByteWriter basic_head(const Report& report) {
   write_pose(head, report.tcp_pose);
   write_joints(head, report.effort);
   return head;
+}
+
+/// Offsets 87..144 of normal: masks, codes and settings.
+ByteWriter normal_tail(const Report& report) {
+  ByteWriter tail;
+  tail.u8(report.brake_mask)
+      .u8(report.enable_mask)
+      .u8(static_cast<std::uint8_t>(report.error_code))
+      .u8(static_cast<std::uint8_t>(report.warning_code));
+  write_pose(tail, report.tcp_offset);
+  tail.f32_le(report.payload_kg);
+  for (const double axis : report.payload_centre_m) tail.f32_le(axis * kMmPerM);
+  tail.u8(static_cast<std::uint8_t>(report.collision_sensitivity))
+      .u8(static_cast<std::uint8_t>(report.teach_sensitivity));
+  for (const double axis : report.gravity_direction) tail.f32_le(axis);
+  return tail;
 }
 
 }  // namespace
@@ -172,6 +197,11 @@ Result<Report> parse_report(ByteView packet, ReportKind kind) {
   if (is_realtime) {
     report.timestamp_us = reader_at(packet, realtime::kTimestamp).u64_be().value_or(0);
     report.has_timestamp = true;
+    ByteReader target_position = reader_at(packet, realtime::kTargetPosition);
+    report.target_position_rad = read_joints(target_position);
+    ByteReader target_velocity = reader_at(packet, realtime::kTargetVelocity);
+    report.target_velocity_rad_s = read_joints(target_velocity);
+    report.has_targets = true;
     ByteReader position = reader_at(packet, realtime::kPosition);
     report.position_rad = read_joints(position);
     ByteReader velocity = reader_at(packet, realtime::kVelocity);
@@ -195,12 +225,22 @@ Result<Report> parse_report(ByteView packet, ReportKind kind) {
     report.has_force_torque = true;
   }
   if (kind == ReportKind::kNormal) {
-    ByteReader codes = reader_at(packet, basic::kBrakeMask);
-    report.brake_mask = codes.u8().value_or(0);
-    report.enable_mask = codes.u8().value_or(0);
-    report.error_code = codes.u8().value_or(0);
-    report.warning_code = codes.u8().value_or(0);
+    ByteReader tail = reader_at(packet, basic::kBrakeMask);
+    report.brake_mask = tail.u8().value_or(0);
+    report.enable_mask = tail.u8().value_or(0);
+    report.error_code = tail.u8().value_or(0);
+    report.warning_code = tail.u8().value_or(0);
     report.has_codes = true;
+    report.tcp_offset = read_pose(tail);
+    report.payload_kg = read_f32(tail);
+    for (double& axis : report.payload_centre_m) axis = read_f32(tail) / kMmPerM;
+    report.collision_sensitivity = tail.u8().value_or(0);
+    report.teach_sensitivity = tail.u8().value_or(0);
+    report.has_settings = true;
+    if (packet.size() == kind_info.long_size) {  // older firmware's 133 bytes end before it
+      for (double& axis : report.gravity_direction) axis = read_f32(tail);
+      report.has_gravity_direction = true;
+    }
   }
   return report;
 }
@@ -208,8 +248,7 @@ Result<Report> parse_report(ByteView packet, ReportKind kind) {
 Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torque) {
   const KindInfo& kind_info = info(kind);
   const bool long_real = kind == ReportKind::kReal && with_force_torque;
-  // Fields Report does not model (targets, TCP offset, payload, sensitivities …) go out as zeros,
-  // which pass the SDK's checks (sensitivities 0–5).
+  // Fields Report does not model (target accelerations, currents, TCP speeds …) go out as zeros.
   const std::size_t size = kind == ReportKind::kNormal || long_real ? kind_info.long_size : kind_info.short_size;
   Bytes packet(size, 0);
   put(packet, 0, ByteWriter().u32_be(static_cast<std::uint32_t>(size)));
@@ -217,14 +256,11 @@ Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torqu
   if (kind == ReportKind::kRealtime) {
     put(packet, realtime::kTimestamp,
         ByteWriter().u64_be(report.timestamp_us).u8(state_mode_byte(report)).u16_be(report.cmd_num));
-    const auto joints = [](const JointValues& values) {
-      ByteWriter field;
-      write_joints(field, values);
-      return field;
-    };
-    put(packet, realtime::kPosition, joints(report.position_rad));
-    put(packet, realtime::kVelocity, joints(report.velocity_rad_s));
-    put(packet, realtime::kTorque, joints(report.effort));
+    put(packet, realtime::kTargetPosition, joints_field(report.target_position_rad));
+    put(packet, realtime::kTargetVelocity, joints_field(report.target_velocity_rad_s));
+    put(packet, realtime::kPosition, joints_field(report.position_rad));
+    put(packet, realtime::kVelocity, joints_field(report.velocity_rad_s));
+    put(packet, realtime::kTorque, joints_field(report.effort));
     ByteWriter pose;
     write_pose(pose, report.tcp_pose);
     put(packet, realtime::kTcpPose, pose);
@@ -239,14 +275,7 @@ Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torqu
     put(packet, basic::kForceTorqueFiltered, wrench_field(report.force_torque));
     put(packet, basic::kForceTorqueRaw, wrench_field(report.force_torque));
   }
-  if (kind == ReportKind::kNormal) {
-    put(packet, basic::kBrakeMask,
-        ByteWriter()
-            .u8(report.brake_mask)
-            .u8(report.enable_mask)
-            .u8(static_cast<std::uint8_t>(report.error_code))
-            .u8(static_cast<std::uint8_t>(report.warning_code)));
-  }
+  if (kind == ReportKind::kNormal) put(packet, basic::kBrakeMask, normal_tail(report));
   return packet;
 }
 

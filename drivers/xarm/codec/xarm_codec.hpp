@@ -338,7 +338,17 @@ struct Version {
 Result<Version> parse_version(ByteView data);
 Bytes encode_version(const Version& version);
 
-Result<int> parse_state(ByteView data);             // get_state
+/// 40 bytes: the robot's SN, NUL, the control box's SN, NUL padded (§4.1).
+struct SerialNumbers {
+  std::string robot_sn;
+  std::string control_box_sn;
+};
+Result<SerialNumbers> parse_robot_sn(ByteView data);
+/// Cut at 40 bytes, as encode_version.
+Bytes encode_robot_sn(const SerialNumbers& serials);
+
+Result<int> parse_state(ByteView data);  // get_state
+Bytes encode_state(int state);
 Result<std::uint16_t> parse_cmdnum(ByteView data);  // get_cmdnum; also the count after a queued motion
 Bytes encode_cmdnum(std::uint16_t count);
 struct ErrorWarning {
@@ -352,6 +362,7 @@ Bytes encode_pose(const Pose& pose);
 Result<JointValues> parse_joints(ByteView data);  // get_joint_pos: 7 floats
 Bytes encode_joints(const JointValues& joints_rad);
 Result<bool> parse_limit_flag(ByteView data);  // is_joint_limit: 1 = outside the limits
+Bytes encode_limit_flag(bool outside);
 
 struct ServoStatus {
   int state = 0;  // 0 normal, 1 error detected, 3 communication failure
@@ -418,17 +429,29 @@ struct Report {
   int warning_code = 0;
   std::uint8_t brake_mask = 0;   // bit i = joint i+1's brake released
   std::uint8_t enable_mask = 0;  // bit i = joint i+1 enabled
-  bool has_timestamp = false;    // kRealtime only
+  bool has_settings = false;     // kNormal only: the fields below
+  Pose tcp_offset;               // from the flange
+  double payload_kg = 0;
+  std::array<double, 3> payload_centre_m{};   // centre of mass
+  int collision_sensitivity = 0;              // 0 (off) … 5
+  int teach_sensitivity = 0;                  // 0 … 5
+  bool has_gravity_direction = false;         // kNormal 145-byte packets only
+  std::array<double, 3> gravity_direction{};  // in the base frame; (0, 0, -1) on a floor
+  bool has_timestamp = false;                 // kRealtime only
   std::uint64_t timestamp_us = 0;
   bool has_force_torque = false;         // kReal 135-byte packets, kRealtime
   std::array<double, 6> force_torque{};  // filtered external wrench (N, N·m)
+  bool has_targets = false;              // kRealtime only: the joint targets the arm follows
+  JointValues target_position_rad{};
+  JointValues target_velocity_rad_s{};
 };
 /// One whole packet (its size prefix included). kInvalidArgument when the size field disagrees
 /// with the packet, the size is not one this kind has, or state ≥ 10 / mode ≥ 12 (the SDK's
 /// sanity checks).
 Result<Report> parse_report(ByteView packet, ReportKind kind);
-/// The simulator's side: kReal 135 bytes when with_force_torque else 87; kNormal 145;
-/// kRealtime 784. Fields a kind does not carry are ignored.
+/// The simulator's side: kReal 135 bytes when with_force_torque else 87; kNormal 145 (with the
+/// gravity direction); kRealtime 784. Fields a kind does not carry are ignored, whatever the
+/// has_* flags say.
 Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torque = false);
 
 // ---- Error tables (§6) ---------------------------------------------------------------------
@@ -474,6 +497,8 @@ Result<void> check_joint_speed(double speed_rad_s);                     // (0, �
 Result<void> check_joint_acc(double acc_rad_s2);                        // (0, 20] rad/s² (1145 °/s²)
 Result<void> check_joint_jerk(double jerk_rad_s3);                      // (0, 500] rad/s³ (28647 °/s³)
 Result<void> check_sleep(double seconds);                               // [0, 3600] s
-Result<void> check_joints_within(const JointValues& joints_rad, const ArmModel& model);  // the model's limits
+/// The model's limits, forgiving 1e-6 rad beyond them: a value sent exactly at a limit arrives
+/// (or is read back) a hair beyond it after the wire's fp32 rounding.
+Result<void> check_joints_within(const JointValues& joints_rad, const ArmModel& model);
 
 }  // namespace robotd::xarm

@@ -51,6 +51,12 @@ std::optional<JointValues> CommandCache::advance(double dt_s, std::vector<CacheE
   return joints;
 }
 
+JointValues CommandCache::velocity() const {
+  if (!running_ || !running_->progress) return {};
+  const PathProgress& progress = *running_->progress;
+  return commands_.front().path->velocity(progress.position(), progress.speed());
+}
+
 void CommandCache::brake() {
   braking_ = true;
   if (running_ && running_->progress) running_->progress->brake();

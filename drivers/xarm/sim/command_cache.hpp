@@ -57,6 +57,8 @@ class CommandCache {
   /// Runs the commands for `dt_s`: the joints on the path of the move in progress (nullopt when
   /// none moves). Starts and ends are appended to `events`.
   std::optional<JointValues> advance(double dt_s, std::vector<CacheEvent>& events);
+  /// The joints' velocity on the move in progress, as its profile has it now (0 when none).
+  JointValues velocity() const;
   /// The move in progress decelerates to rest on its path; a sleep stops counting. Nothing new
   /// starts until resume().
   void brake();

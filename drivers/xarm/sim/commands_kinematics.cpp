@@ -91,8 +91,7 @@ Controller::Outcome Controller::get_fk(const Request& request) {
 Controller::Outcome Controller::is_joint_limit(const Request& request) {
   const auto parsed = parse_joint_params(request.frame.reg, request.frame.body);
   if (!parsed) return parameter_error(request, parsed.error().message);
-  const bool outside = !within_limits(parsed.value(), model_);
-  return answer(ByteWriter().u8(outside ? 1 : 0).take());
+  return answer(encode_limit_flag(!within_limits(parsed.value(), model_)));
 }
 
 }  // namespace robotd::xarm::sim

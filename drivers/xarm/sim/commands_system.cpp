@@ -1,6 +1,5 @@
 // System registers (spec §3, §4.1; seed Part I, III): version, enable and brakes, state and mode,
 // errors and warnings, configuration, servo status, motion feedback.
-#include <algorithm>
 #include <string>
 
 #include "controller.hpp"
@@ -8,7 +7,6 @@
 namespace robotd::xarm::sim {
 namespace {
 
-constexpr std::size_t kSerialBytes = 40;  // get_robot_sn: robot SN, NUL, control-box SN, NUL padded
 constexpr int kAllJoints = 8;
 constexpr int kMaxSensitivity = 5;
 constexpr int kFeedbackBits = 0x07;  // 1 started, 2 finished, 4 non-motion task triggered
@@ -28,10 +26,8 @@ Controller::Outcome Controller::get_version(const Request& /*request*/) {
 }
 
 Controller::Outcome Controller::get_robot_sn(const Request& /*request*/) {
-  const std::string text = robot_serial(model_) + '\0' + control_box_serial(model_);
-  Bytes data(kSerialBytes, 0);
-  std::copy_n(text.begin(), std::min(text.size(), kSerialBytes), data.begin());
-  return answer(std::move(data));
+  return answer(
+      encode_robot_sn(SerialNumbers{.robot_sn = robot_serial(model_), .control_box_sn = control_box_serial(model_)}));
 }
 
 Controller::Outcome Controller::motion_enable(const Request& request) {
@@ -91,9 +87,7 @@ Controller::Outcome Controller::set_state(const Request& request) {
   return Outcome{};
 }
 
-Controller::Outcome Controller::get_state(const Request& /*request*/) {
-  return answer(ByteWriter().u8(static_cast<std::uint8_t>(state_)).take());
-}
+Controller::Outcome Controller::get_state(const Request& /*request*/) { return answer(encode_state(state_)); }
 
 Controller::Outcome Controller::get_cmdnum(const Request& /*request*/) {
   return answer(encode_cmdnum(static_cast<std::uint16_t>(cache_.size())));

@@ -14,6 +14,9 @@ constexpr double kVelocityFilterS = 0.01;
 constexpr double kTorquePerRadS = 2.0;
 constexpr int kFirstServoError = 10;
 constexpr int kLastServoError = 17;
+/// Straight down in the base frame, what the SDK assumes until a report says otherwise (a floor
+/// mount): set_gravity_dir (51) is not emulated.
+constexpr std::array<double, 3> kGravityDirection{0, 0, -1};
 
 constexpr std::uint8_t number(Register reg) { return static_cast<std::uint8_t>(reg); }
 
@@ -242,9 +245,27 @@ Report Controller::report(std::int64_t now_ns) const {
   report.warning_code = warning_;
   report.brake_mask = bit_mask(brake_released_, model_.dof);
   report.enable_mask = bit_mask(enabled_, model_.dof);
+  report.has_settings = true;
+  report.tcp_offset = config_.tcp_offset;
+  report.payload_kg = config_.payload_kg;
+  report.payload_centre_m = config_.payload_centre_m;
+  report.collision_sensitivity = config_.collision_sensitivity;
+  report.teach_sensitivity = config_.teach_sensitivity;
+  report.has_gravity_direction = true;
+  report.gravity_direction = kGravityDirection;
   report.has_timestamp = true;
   report.timestamp_us = static_cast<std::uint64_t>((now_ns - started_ns_) / 1000);
   report.has_force_torque = options_.report_force_torque;  // no sensor is simulated: zeros
+  report.has_targets = true;
+  if (const auto& servo_target = servo_.target()) {
+    report.target_position_rad = *servo_target;
+    report.target_velocity_rad_s = servo_.drive_velocity(joints_, model_.dof);
+  } else {
+    // Planned moves put the joints on their profile (no tracking error): its target is where
+    // they are. With nothing in progress they hold there at rest.
+    report.target_position_rad = joints_;
+    report.target_velocity_rad_s = cache_.velocity();
+  }
   return report;
 }
 

@@ -3,20 +3,11 @@
 #include <algorithm>
 
 namespace robotd::xarm::sim {
-namespace {
-
-constexpr double kRoundingRad = 1e-6;
-
-}  // namespace
 
 Result<JointValues> within_limits(const JointValues& joints, const ArmModel& model) {
+  if (auto checked = check_joints_within(joints, model); !checked) return checked.error();
   JointValues onto = joints;
-  for (std::size_t j = 0; j < model.dof; ++j) {
-    if (joints[j] >= model.min_rad[j] - kRoundingRad && joints[j] <= model.max_rad[j] + kRoundingRad) {
-      onto[j] = std::clamp(joints[j], model.min_rad[j], model.max_rad[j]);
-    }
-  }
-  if (auto checked = check_joints_within(onto, model); !checked) return checked.error();
+  for (std::size_t j = 0; j < model.dof; ++j) onto[j] = std::clamp(joints[j], model.min_rad[j], model.max_rad[j]);
   return onto;
 }
 

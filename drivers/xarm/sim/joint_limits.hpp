@@ -1,5 +1,6 @@
-// The model's joint limits as the simulator applies them: the codec's check, with the wire's fp32
-// rounding forgiven (a target sent exactly at a limit arrives a hair beyond it).
+// The model's joint limits as the simulator applies them: the codec's check, which forgives the
+// wire's fp32 rounding (a target sent exactly at a limit arrives a hair beyond it), and such a
+// target put on the limit, so the joints never leave their range.
 #pragma once
 
 #include "codec/xarm_codec.hpp"

@@ -46,4 +46,17 @@ JointValues PlannedPath::at(double s) const {
   return kinematics::joints_along(samples_, length_ > 0 ? s / length_ : 1.0);
 }
 
+JointValues PlannedPath::velocity(double s, double speed) const {
+  JointValues velocity{};
+  if (samples_.size() < 2 || length_ <= 0) return velocity;
+  const auto segments = static_cast<double>(samples_.size() - 1);
+  const auto below =
+      std::min(static_cast<std::size_t>(std::clamp(s / length_, 0.0, 1.0) * segments), samples_.size() - 2);
+  const double segments_per_unit = segments / length_;
+  for (std::size_t j = 0; j < velocity.size(); ++j) {
+    velocity[j] = (samples_[below + 1][j] - samples_[below][j]) * segments_per_unit * speed;
+  }
+  return velocity;
+}
+
 }  // namespace robotd::xarm::sim

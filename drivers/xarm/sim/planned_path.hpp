@@ -24,6 +24,9 @@ class PlannedPath {
   double length() const { return length_; }
   /// The joints at path position `s` (0 … length()).
   JointValues at(double s) const;
+  /// How fast the joints turn at path position `s` when the path is run at `speed` (its unit per
+  /// second): the slope between the samples around `s`, as at() interpolates.
+  JointValues velocity(double s, double speed) const;
   const JointValues& end() const { return samples_.back(); }
 
  private:

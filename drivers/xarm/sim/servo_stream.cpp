@@ -40,10 +40,23 @@ bool ServoStream::step(JointValues& joints, std::size_t dof, double dt_s) const 
   bool arrived = true;
   for (std::size_t j = 0; j < dof; ++j) {
     const double left = (*target_)[j] - joints[j];
-    joints[j] += std::clamp(left, -reach_rad, reach_rad);
-    arrived = arrived && std::abs(left) <= reach_rad;
+    const bool reached = std::abs(left) <= reach_rad;
+    // Taking the target itself (not joints + left, which can round a hair off it) leaves the
+    // joint exactly on it, so drive_velocity() sees it there.
+    joints[j] = reached ? (*target_)[j] : joints[j] + std::copysign(reach_rad, left);
+    arrived = arrived && reached;
   }
   return arrived;
+}
+
+JointValues ServoStream::drive_velocity(const JointValues& joints, std::size_t dof) const {
+  JointValues velocity{};
+  if (!target_) return velocity;
+  for (std::size_t j = 0; j < dof; ++j) {
+    const double left = (*target_)[j] - joints[j];
+    if (left != 0) velocity[j] = std::copysign(kMaxJointSpeedRadS, left);
+  }
+  return velocity;
 }
 
 nlohmann::json ServoStream::statistics(std::size_t dof) const {

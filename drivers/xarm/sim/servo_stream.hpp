@@ -28,10 +28,15 @@ class ServoStream {
   /// Forgets the target: the joints hold, the next servo_j starts a new stream.
   void drop() { target_.reset(); }
   bool active() const { return target_.has_value(); }
+  /// The newest accepted target; nullopt while the joints hold.
+  const std::optional<JointValues>& target() const { return target_; }
 
   /// Moves `joints` toward the target for `dt_s`, each at up to kMaxJointSpeedRadS; true when
   /// they are on it.
   bool step(JointValues& joints, std::size_t dof, double dt_s) const;
+  /// The velocity step() drives `joints` at: kMaxJointSpeedRadS toward the target for each joint
+  /// off it, 0 for one on it.
+  JointValues drive_velocity(const JointValues& joints, std::size_t dof) const;
 
   /// {"frames", "ignored", "max_interval_us", "last_target_rad"} for the control channel.
   nlohmann::json statistics(std::size_t dof) const;

@@ -22,7 +22,6 @@ namespace {
 
 using namespace std::chrono_literals;
 using driver::IoResult;
-using driver::JointCommandKind;
 using testing::diagnostic;
 using testing::DriverLoop;
 using testing::joints_near;

@@ -95,8 +95,16 @@ Report sample_report() {
   report.warning_code = 11;
   report.brake_mask = 0x3F;
   report.enable_mask = 0x1F;
+  report.tcp_offset = Pose{.position_m = {0.01, -0.02, 0.125}, .rpy_rad = {0, 0, kPi / 2}};
+  report.payload_kg = 1.5;
+  report.payload_centre_m = {0, 0.01, 0.05};
+  report.collision_sensitivity = 4;
+  report.teach_sensitivity = 2;
+  report.gravity_direction = {0, -0.5, -0.75};
   report.timestamp_us = 0x0102030405060708ULL;
   report.force_torque = {1.0, -2.0, 30.5, 0.25, -0.5, 0.75};
+  report.target_position_rad = {0.25, -1.25, 1.5, -2.0, 2.5, -3.0, 6.25};
+  report.target_velocity_rad_s = {1.0, -0.25, 0.3, -0.4, 0.5, -0.6, -3.0};
   return report;
 }
 
@@ -735,14 +743,44 @@ TEST(ReplyData, VersionRoundTripIsFortyBytes) {
   EXPECT_EQ(encode_version(long_sn).size(), 40U);
 }
 
+TEST(ReplyData, RobotSnIsTwoNulTerminatedSerials) {
+  Bytes data = padded("XI1303B12AJA03");
+  const std::string_view box = "AC1305B12AJA03";
+  std::copy(box.begin(), box.end(), data.begin() + 15);  // after the robot SN's NUL
+  const auto serials = parse_robot_sn(data);
+  ASSERT_TRUE(serials.ok()) << error_of(serials);
+  EXPECT_EQ(serials.value().robot_sn, "XI1303B12AJA03");
+  EXPECT_EQ(serials.value().control_box_sn, "AC1305B12AJA03");
+  EXPECT_EQ(encode_robot_sn({.robot_sn = "XI1303B12AJA03", .control_box_sn = "AC1305B12AJA03"}), data);
+}
+
+TEST(ReplyData, RobotSnWithoutAControlBoxOrPastFortyBytes) {
+  const auto robot_only = parse_robot_sn(padded("XS1"));
+  ASSERT_TRUE(robot_only.ok());
+  EXPECT_EQ(robot_only.value().robot_sn, "XS1");
+  EXPECT_EQ(robot_only.value().control_box_sn, "");
+  const auto full = parse_robot_sn(Bytes(40, 'S'));
+  ASSERT_TRUE(full.ok()) << "no NUL at all: the robot SN fills the data";
+  EXPECT_EQ(full.value().robot_sn, std::string(40, 'S'));
+  EXPECT_EQ(full.value().control_box_sn, "");
+  const Bytes cut = encode_robot_sn({.robot_sn = std::string(30, 'R'), .control_box_sn = std::string(20, 'B')});
+  ASSERT_EQ(cut.size(), 40U);
+  EXPECT_EQ(parse_robot_sn(cut).value().control_box_sn, std::string(9, 'B'));
+  EXPECT_EQ(error_of(parse_robot_sn(Bytes(39, 0))), "get_robot_sn reply carries 39 data bytes, expected at least 40");
+}
+
 TEST(ReplyData, StateCountAndCodes) {
   EXPECT_EQ(parse_state(Bytes{2}).value(), 2);
+  EXPECT_EQ(encode_state(kStatePaused), Bytes{3});
+  EXPECT_EQ(parse_state(encode_state(kStateReset)).value(), kStateReset);
   EXPECT_EQ(parse_cmdnum(Bytes{0x01, 0x02}).value(), 258);
   EXPECT_EQ(encode_cmdnum(1024), (Bytes{0x04, 0x00}));
   EXPECT_EQ(parse_cmdnum(encode_cmdnum(65535)).value(), 65535);
   EXPECT_EQ(encode_err_code({.error = 111, .warning = 0}), (Bytes{111, 0}));
   EXPECT_EQ(parse_limit_flag(Bytes{1}).value(), true);
   EXPECT_EQ(parse_limit_flag(Bytes{0}).value(), false);
+  EXPECT_EQ(encode_limit_flag(true), Bytes{1});
+  EXPECT_EQ(encode_limit_flag(false), Bytes{0});
 }
 
 TEST(ReplyData, ShortDataNamesTheReplyAndTheCounts) {
@@ -895,6 +933,9 @@ TEST(Reports, HandBuiltRealReport) {
   EXPECT_FALSE(report.value().has_codes);
   EXPECT_FALSE(report.value().has_velocity);
   EXPECT_FALSE(report.value().has_timestamp);
+  EXPECT_FALSE(report.value().has_settings);
+  EXPECT_FALSE(report.value().has_gravity_direction);
+  EXPECT_FALSE(report.value().has_targets);
 }
 
 TEST(Reports, RealRoundTripWithAndWithoutForceTorque) {
@@ -936,6 +977,34 @@ TEST(Reports, NormalRoundTripCarriesCodesAndMasks) {
   expect_joints_near(report.value().position_rad, sent.position_rad);
   expect_pose_near(report.value().tcp_pose, sent.tcp_pose);
   EXPECT_FALSE(report.value().has_force_torque);
+  EXPECT_FALSE(report.value().has_targets);
+}
+
+TEST(Reports, NormalCarriesTheSettingsAtTheSpecsOffsets) {
+  const Report sent = sample_report();
+  const Bytes packet = encode_report(sent, ReportKind::kNormal);
+  const auto at = [&packet](std::size_t offset) {
+    return Bytes(packet.begin() + static_cast<std::ptrdiff_t>(offset),
+                 packet.begin() + static_cast<std::ptrdiff_t>(offset + 4));
+  };
+  EXPECT_EQ(at(91), (Bytes{0x00, 0x00, 0x20, 0x41}));   // TCP offset x: 10 mm
+  EXPECT_EQ(at(99), (Bytes{0x00, 0x00, 0xFA, 0x42}));   // TCP offset z: 125 mm
+  EXPECT_EQ(at(111), f32_bytes(kPi / 2));               // TCP offset yaw, rad
+  EXPECT_EQ(at(115), (Bytes{0x00, 0x00, 0xC0, 0x3F}));  // payload: 1.5 kg
+  EXPECT_EQ(at(127), (Bytes{0x00, 0x00, 0x48, 0x42}));  // centre of mass z: 50 mm
+  EXPECT_EQ(packet[131], 4);                            // collision sensitivity
+  EXPECT_EQ(packet[132], 2);                            // teach sensitivity
+  EXPECT_EQ(at(141), (Bytes{0x00, 0x00, 0x40, 0xBF}));  // gravity z: -0.75
+  const auto report = parse_report(packet, ReportKind::kNormal);
+  ASSERT_TRUE(report.ok()) << error_of(report);
+  EXPECT_TRUE(report.value().has_settings);
+  expect_pose_near(report.value().tcp_offset, sent.tcp_offset);
+  EXPECT_EQ(report.value().payload_kg, 1.5);
+  for (std::size_t i = 0; i < 3; ++i) expect_float_near(report.value().payload_centre_m[i], sent.payload_centre_m[i]);
+  EXPECT_EQ(report.value().collision_sensitivity, 4);
+  EXPECT_EQ(report.value().teach_sensitivity, 2);
+  EXPECT_TRUE(report.value().has_gravity_direction);
+  EXPECT_EQ(report.value().gravity_direction, sent.gravity_direction);
 }
 
 TEST(Reports, NormalFromOlderFirmwareHas133Bytes) {
@@ -945,6 +1014,11 @@ TEST(Reports, NormalFromOlderFirmwareHas133Bytes) {
   const auto report = parse_report(packet, ReportKind::kNormal);
   ASSERT_TRUE(report.ok()) << error_of(report);
   EXPECT_EQ(report.value().error_code, 23);
+  EXPECT_TRUE(report.value().has_settings) << "everything up to the teach sensitivity";
+  EXPECT_EQ(report.value().teach_sensitivity, 2);
+  EXPECT_EQ(report.value().payload_kg, 1.5);
+  EXPECT_FALSE(report.value().has_gravity_direction);
+  EXPECT_EQ(report.value().gravity_direction, (std::array<double, 3>{}));
 }
 
 TEST(Reports, RealtimeRoundTripAndLayout) {
@@ -953,6 +1027,10 @@ TEST(Reports, RealtimeRoundTripAndLayout) {
   ASSERT_EQ(packet.size(), 784U);
   EXPECT_EQ(Bytes(packet.begin(), packet.begin() + 15),
             (Bytes{0x00, 0x00, 0x03, 0x10, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, 0x11, 0x02, 0x01}));
+  EXPECT_EQ(Bytes(packet.begin() + 32, packet.begin() + 36), (Bytes{0x00, 0x00, 0x80, 0x3E}));  // target joint 1: 0.25
+  EXPECT_EQ(Bytes(packet.begin() + 60, packet.begin() + 64), (Bytes{0x00, 0x00, 0x80, 0x3F}));  // its velocity: 1
+  EXPECT_EQ(Bytes(packet.begin() + 84, packet.begin() + 88), f32_bytes(-3.0));     // target joint 7's velocity
+  EXPECT_EQ(Bytes(packet.begin() + 88, packet.begin() + 116), Bytes(28, 0));       // target accelerations: not modelled
   EXPECT_EQ(Bytes(packet.begin() + 116, packet.begin() + 120), f32_bytes(0.5));    // actual joint 1
   EXPECT_EQ(Bytes(packet.begin() + 228, packet.begin() + 232), f32_bytes(1.5));    // estimated torque 1
   EXPECT_EQ(Bytes(packet.begin() + 472, packet.begin() + 476), f32_bytes(300.0));  // actual TCP x, mm
@@ -966,11 +1044,16 @@ TEST(Reports, RealtimeRoundTripAndLayout) {
   EXPECT_TRUE(report.value().has_velocity);
   expect_joints_near(report.value().position_rad, sent.position_rad);
   expect_joints_near(report.value().velocity_rad_s, sent.velocity_rad_s);
+  EXPECT_TRUE(report.value().has_targets);
+  expect_joints_near(report.value().target_position_rad, sent.target_position_rad);
+  expect_joints_near(report.value().target_velocity_rad_s, sent.target_velocity_rad_s);
   expect_joints_near(report.value().effort, sent.effort);
   expect_pose_near(report.value().tcp_pose, sent.tcp_pose);
   EXPECT_TRUE(report.value().has_force_torque);
   EXPECT_EQ(report.value().force_torque, sent.force_torque);
   EXPECT_FALSE(report.value().has_codes);
+  EXPECT_FALSE(report.value().has_settings);
+  EXPECT_FALSE(report.value().has_gravity_direction);
 }
 
 TEST(Reports, RealtimeAcceptsTheSdks804Bytes) {
@@ -1232,6 +1315,20 @@ TEST(ArgumentChecks, JointsWithinTheModelsLimits) {
             "joint 3 angle 0.5 rad is outside [-3.927, 0.19199] rad for the xArm 6");
 }
 
+TEST(ArgumentChecks, JointLimitsForgiveTheWiresRounding) {
+  const ArmModel xarm6 = find_model("xarm6").value();
+  JointValues joints = xarm6.max_rad;
+  for (std::size_t j = 0; j < xarm6.dof; ++j) joints[j] = as_float(joints[j]);
+  EXPECT_TRUE(check_joints_within(joints, xarm6).ok()) << "each limit rounded to a float";
+  joints = {};
+  joints[2] = xarm6.max_rad[2] + 0.9e-6;
+  joints[3] = xarm6.min_rad[3] - 0.9e-6;
+  EXPECT_TRUE(check_joints_within(joints, xarm6).ok());
+  joints[2] = xarm6.max_rad[2] + 1.1e-6;
+  EXPECT_NE(error_of(check_joints_within(joints, xarm6)).find("is outside [-3.927, 0.19199] rad"), std::string::npos)
+      << "the message names the limits themselves";
+}
+
 // ---- Truncated and random input ------------------------------------------------------------
 
 /// Every decoder on `data`; none may crash or read out of bounds, whatever they return.
@@ -1247,6 +1344,7 @@ void decode_everything(ByteView data) {
   static_cast<void>(parse_pose_params(35, data));
   static_cast<void>(parse_scalar_param(31, data));
   static_cast<void>(parse_version(data));
+  static_cast<void>(parse_robot_sn(data));
   static_cast<void>(parse_state(data));
   static_cast<void>(parse_cmdnum(data));
   static_cast<void>(parse_err_code(data));
@@ -1289,6 +1387,8 @@ std::vector<Bytes> valid_messages() {
       set_tcp_offset_request(sample_pose()).params,
       set_tcp_jerk_request(1).params,
       encode_version({.axes = 6, .type = 6, .robot_sn = "XI", .control_box_sn = "AC", .firmware = "2.3.0"}),
+      encode_robot_sn({.robot_sn = "XI", .control_box_sn = "AC"}),
+      encode_state(kStateSleeping),
       encode_cmdnum(3),
       encode_err_code({.error = 1, .warning = 2}),
       encode_pose(sample_pose()),
@@ -1322,10 +1422,20 @@ TEST(Robustness, TruncatedReportsAndRepliesSayWhy) {
   for (std::size_t size = 0; size < real.size(); ++size) {
     EXPECT_FALSE(parse_report(ByteView(real).first(size), ReportKind::kReal).ok()) << size;
   }
+  for (const ReportKind kind : {ReportKind::kNormal, ReportKind::kRealtime}) {
+    const Bytes packet = encode_report(sample_report(), kind);
+    for (std::size_t size = 0; size < packet.size(); ++size) {
+      EXPECT_FALSE(parse_report(ByteView(packet).first(size), kind).ok()) << report_kind_name(kind) << " " << size;
+    }
+  }
   const Bytes joints = encode_joints(sample_joints());
   for (std::size_t size = 0; size < joints.size(); ++size) {
     EXPECT_FALSE(parse_joints(ByteView(joints).first(size)).ok()) << size;
     EXPECT_FALSE(parse_joint_params(44, ByteView(joints).first(size)).ok()) << size;
+  }
+  const Bytes serials = encode_robot_sn({.robot_sn = "XI1303", .control_box_sn = "AC1305"});
+  for (std::size_t size = 0; size < serials.size(); ++size) {
+    EXPECT_FALSE(parse_robot_sn(ByteView(serials).first(size)).ok()) << size;
   }
 }
 
