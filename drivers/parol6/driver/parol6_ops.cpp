@@ -44,11 +44,6 @@ std::string_view help_of(std::string_view op) {
   return spec == kOps.end() ? std::string_view{} : spec->help;
 }
 
-const nlohmann::json& args_object(const nlohmann::json& args) {
-  static const nlohmann::json kNoArguments = nlohmann::json::object();
-  return args.is_null() ? kNoArguments : args;
-}
-
 }  // namespace
 
 std::vector<driver::OpDescription> op_descriptions() {
@@ -61,37 +56,30 @@ std::vector<driver::OpDescription> op_descriptions() {
 }
 
 OpArguments::OpArguments(std::string_view op, const nlohmann::json& args)
-    : op_(op), reader_(args_object(args), "args", errors_) {}
-
-std::optional<Error> OpArguments::finish() {
-  reader_.finish();
-  if (errors_.empty()) return std::nullopt;
-  return make_error(ErrorCode::kInvalidArgument,
-                    op_ + ": " + join_errors(errors_) + " (expects " + std::string(help_of(op_)) + ")");
-}
+    : driver::OpArguments(op, args, help_of(op)) {}
 
 std::optional<Pose> OpArguments::pose() {
-  for (const char* key : {"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}) reader_.require(key, "a number");
+  for (const char* key : {"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}) reader().require(key, "a number");
   const NumberRange reach{.min = -1.0, .max = 1.0};
   const NumberRange angle{.min = -3.1416, .max = 3.1416};
-  const auto x = reader_.number("x_m", reach);
-  const auto y = reader_.number("y_m", reach);
-  const auto z = reader_.number("z_m", reach);
-  const auto roll = reader_.number("roll_rad", angle);
-  const auto pitch = reader_.number("pitch_rad", angle);
-  const auto yaw = reader_.number("yaw_rad", angle);
+  const auto x = reader().number("x_m", reach);
+  const auto y = reader().number("y_m", reach);
+  const auto z = reader().number("z_m", reach);
+  const auto roll = reader().number("roll_rad", angle);
+  const auto pitch = reader().number("pitch_rad", angle);
+  const auto yaw = reader().number("yaw_rad", angle);
   if (!x || !y || !z || !roll || !pitch || !yaw) return std::nullopt;
   return Pose{*x, *y, *z, *roll, *pitch, *yaw};
 }
 
 MoveTiming OpArguments::timing() {
   MoveTiming timing;
-  timing.duration_s = reader_.number("duration_s", NumberRange{.min = 0.05, .max = 120});
+  timing.duration_s = reader().number("duration_s", NumberRange{.min = 0.05, .max = 120});
   const NumberRange fraction{.min = 0.01, .max = 1.0};
-  timing.speed_fraction = reader_.number_or("speed_fraction", timing.speed_fraction, fraction);
-  timing.acceleration_fraction = reader_.number_or("acceleration_fraction", timing.acceleration_fraction, fraction);
+  timing.speed_fraction = reader().number_or("speed_fraction", timing.speed_fraction, fraction);
+  timing.acceleration_fraction = reader().number_or("acceleration_fraction", timing.acceleration_fraction, fraction);
   timing.profile =
-      reader_.string_or("profile", "trap", {"trap", "poly"}) == "poly" ? Profile::kPolynomial : Profile::kTrapezoid;
+      reader().string_or("profile", "trap", {"trap", "poly"}) == "poly" ? Profile::kPolynomial : Profile::kTrapezoid;
   return timing;
 }
 

@@ -15,26 +15,20 @@
 #include "driver/parol6_driver.hpp"
 #include "kinematics/parol6_kinematics.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "robotd/driver/op_arguments.hpp"
 
 namespace robotd::parol6 {
 
 std::vector<driver::OpDescription> op_descriptions();
 
-/// An op's arguments: a JsonReader over them and the error that names the op and its usage.
-class OpArguments {
+/// An op's arguments, checked against this driver's usage lines, and the readers its ops share.
+class OpArguments : public driver::OpArguments {
  public:
   OpArguments(std::string_view op, const nlohmann::json& args);
-  JsonReader& reader() { return reader_; }
-  std::optional<Error> finish();
   /// {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad}
   std::optional<Pose> pose();
   /// duration_s, speed_fraction, acceleration_fraction, profile ("trap" | "poly").
   MoveTiming timing();
-
- private:
-  std::string op_;
-  std::vector<std::string> errors_;
-  JsonReader reader_;
 };
 
 class Parol6Ops {

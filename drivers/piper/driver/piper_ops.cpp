@@ -59,11 +59,6 @@ std::string_view help_of(std::string_view op) {
 }
 
 /// A missing args value means no arguments.
-const nlohmann::json& args_object(const nlohmann::json& args) {
-  static const nlohmann::json kNoArguments = nlohmann::json::object();
-  return args.is_null() ? kNoArguments : args;
-}
-
 }  // namespace
 
 std::vector<driver::OpDescription> op_descriptions() {
@@ -74,27 +69,20 @@ std::vector<driver::OpDescription> op_descriptions() {
 }
 
 OpArguments::OpArguments(std::string_view op, const nlohmann::json& args)
-    : op_(op), reader_(args_object(args), "args", errors_) {}
-
-std::optional<Error> OpArguments::finish() {
-  reader_.finish();
-  if (errors_.empty()) return std::nullopt;
-  return make_error(ErrorCode::kInvalidArgument,
-                    op_ + ": " + join_errors(errors_) + " (expects " + std::string(help_of(op_)) + ")");
-}
+    : driver::OpArguments(op, args, help_of(op)) {}
 
 std::optional<std::uint8_t> OpArguments::joint(bool allow_all) {
-  if (!reader_.has("joint")) {
+  if (!reader().has("joint")) {
     if (allow_all) return kAllJoints;
-    reader_.require("joint", "a joint number 1..6");
+    reader().require("joint", "a joint number 1..6");
     return std::nullopt;
   }
-  const auto given = reader_.raw("joint");
+  const auto given = reader().raw("joint");
   if (allow_all && given && given->is_string()) {
-    if (!reader_.string("joint", {"all"})) return std::nullopt;
+    if (!reader().string("joint", {"all"})) return std::nullopt;
     return kAllJoints;
   }
-  const auto number = reader_.integer("joint", 1, kArmJoints);
+  const auto number = reader().integer("joint", 1, kArmJoints);
   if (!number) return std::nullopt;
   return static_cast<std::uint8_t>(*number);
 }

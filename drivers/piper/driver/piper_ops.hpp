@@ -13,27 +13,20 @@
 
 #include "driver/piper_driver.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "robotd/driver/op_arguments.hpp"
 
 namespace robotd::piper {
 
 std::vector<driver::OpDescription> op_descriptions();
 
-/// An op's arguments: a JsonReader over them and the error that names the op and its usage.
-class OpArguments {
+/// An op's arguments, checked against this driver's usage lines, and the readers its ops share.
+class OpArguments : public driver::OpArguments {
  public:
   OpArguments(std::string_view op, const nlohmann::json& args);
-  JsonReader& reader() { return reader_; }
-  /// Reports unknown keys; the error for everything wrong, or nullopt.
-  std::optional<Error> finish();
   /// "joint": 1 … 6, or "all" when `allow_all` (then kAllJoints).
   std::optional<std::uint8_t> joint(bool allow_all);
   /// A pose object {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad} under `reader`.
   static std::optional<CartesianPose> pose(JsonReader& reader);
-
- private:
-  std::string op_;
-  std::vector<std::string> errors_;
-  JsonReader reader_;
 };
 
 class PiperOps {

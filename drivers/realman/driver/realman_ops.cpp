@@ -63,11 +63,6 @@ std::string_view help_of(std::string_view op) {
   return spec == kOps.end() ? std::string_view{} : spec->help;
 }
 
-const nlohmann::json& args_object(const nlohmann::json& args) {
-  static const nlohmann::json kNoArguments = nlohmann::json::object();
-  return args.is_null() ? kNoArguments : args;
-}
-
 bool starts_with(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
 
 }  // namespace
@@ -80,18 +75,11 @@ std::vector<driver::OpDescription> op_descriptions() {
 }
 
 OpArguments::OpArguments(std::string_view op, const nlohmann::json& args)
-    : op_(op), reader_(args_object(args), "args", errors_) {}
+    : driver::OpArguments(op, args, help_of(op)) {}
 
-std::optional<Error> OpArguments::finish() {
-  reader_.finish();
-  if (errors_.empty()) return std::nullopt;
-  return make_error(ErrorCode::kInvalidArgument,
-                    op_ + ": " + join_errors(errors_) + " (expects " + std::string(help_of(op_)) + ")");
-}
+bool OpArguments::block() { return reader().boolean_or("block", true); }
 
-bool OpArguments::block() { return reader_.boolean_or("block", true); }
-
-double OpArguments::timeout_s() { return reader_.number_or("timeout_s", 60, NumberRange{.min = 0.1, .max = 3600}); }
+double OpArguments::timeout_s() { return reader().number_or("timeout_s", 60, NumberRange{.min = 0.1, .max = 3600}); }
 
 Result<nlohmann::json> RealmanOps::call(const std::string& op, const nlohmann::json& args) {
   if (!driver_.connected_.load(std::memory_order_acquire) && op != "state") {

@@ -14,6 +14,7 @@
 
 #include "driver/realman_driver.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "robotd/driver/op_arguments.hpp"
 
 namespace robotd::realman {
 
@@ -54,21 +55,13 @@ class RealmanOps {
   RealmanDriver& driver_;
 };
 
-/// An op's arguments: a JsonReader over them and, at finish(), one error naming the op and
-/// everything wrong with the arguments.
-class OpArguments {
+/// An op's arguments, checked against this driver's usage lines, and the readers its ops share.
+class OpArguments : public driver::OpArguments {
  public:
   OpArguments(std::string_view op, const nlohmann::json& args);
-  JsonReader& reader() { return reader_; }
-  std::optional<Error> finish();
   /// "block" (default true) and "timeout_s" (default 60).
   bool block();
   double timeout_s();
-
- private:
-  std::string op_;
-  std::vector<std::string> errors_;
-  JsonReader reader_;
 };
 
 }  // namespace robotd::realman
