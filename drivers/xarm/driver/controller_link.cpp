@@ -21,6 +21,9 @@ constexpr auto kIdleWake = std::chrono::milliseconds(50);
 /// Slack beyond the link thread's own deadline before a waiting caller gives up by itself.
 constexpr auto kCallerSlack = std::chrono::seconds(1);
 constexpr auto kErrorPollTimeout = std::chrono::milliseconds(500);
+/// How long the box must show a stop under a streaming session, with no error read, before it is
+/// taken as stopped by somebody else (a few error polls and reports).
+constexpr auto kUnexplainedStop = std::chrono::milliseconds(300);
 
 std::string errno_text(int error) { return std::generic_category().message(error); }
 
@@ -74,6 +77,7 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   generation_ = 0;
   confirm_after_ = 0;
   leave_requested_at_ = {};
+  stopped_since_ = {};
   estop_sent_ = false;
   lost_ = false;
   const Clock::time_point now = Clock::now();
@@ -312,9 +316,14 @@ void ControllerLink::publish(const Report& report, Clock::time_point now) {
   out.warning_code = codes_.warning;
   out.phase = phase_;
   // The box stops on any error (state 4); a stop while streaming that no error explains is
-  // somebody else's set_state(4) — the session's commands no longer move the arm.
-  if (phase_ == ServoPhase::kServo && !estop_sent_ && codes_.error == 0 &&
-      (report.state == kStateStopped || report.state == kStateReset)) {
+  // somebody else's set_state(4) — the session's commands no longer move the arm. The error's
+  // code may come a poll after the report that shows the stop, so the stop must last first.
+  const bool stopped = report.state == kStateStopped || report.state == kStateReset;
+  if (phase_ != ServoPhase::kServo || estop_sent_ || !stopped) {
+    stopped_since_ = {};
+  } else if (stopped_since_ == Clock::time_point{}) {
+    stopped_since_ = now;
+  } else if (codes_.error == 0 && !last_status_.error && now - stopped_since_ > kUnexplainedStop) {
     servo_fault_.set(kArmStoppedFault, ("the control box left servo mode: " + motion_state_text(report.state) +
                                         " while a session streams; recover to continue")
                                            .c_str());

@@ -193,7 +193,8 @@ class ControllerLink {
   std::uint64_t generation_ = 0;     // of the latest mode change; older replies are stale
   std::uint64_t confirm_after_ = 0;  // entering: replies in, reports after this sequence confirm
   Clock::time_point confirm_deadline_{};
-  driver::FaultInfo servo_fault_{};  // why servo mode could not be entered, or was lost
+  driver::FaultInfo servo_fault_{};    // why servo mode could not be entered, or was lost
+  Clock::time_point stopped_since_{};  // the box has shown a stop under a streaming session since
   Clock::time_point leave_requested_at_{};
   bool estop_sent_ = false;
   Clock::time_point next_estop_probe_at_{};

@@ -576,7 +576,6 @@ Stream stream_of(const std::vector<Frame>& frames) {
 }
 
 constexpr int kHostFrameBytes = static_cast<int>(kHostFrameSize);
-constexpr int kRobotFrameBytes = static_cast<int>(kRobotFrameSize);
 constexpr std::array<FrameParser::Style, 2> kStyles{FrameParser::Style::kFirmware, FrameParser::Style::kResync};
 
 TEST(Parol6Parser, CleanStreamOfNFramesGivesN) {

@@ -269,6 +269,26 @@ TEST_F(XarmDriverTest, EstopStopsTheArmAndAResetResumesFromWhereItIs) {
   EXPECT_EQ(sim_state()["error"].get<int>(), 0) << sim_state().dump();
 }
 
+TEST_F(XarmDriverTest, AStopFromElsewhereUnderASessionIsAFaultAndRecoverResumesTheStream) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDof);
+  ASSERT_TRUE(loop.wait_for(has_feedback));
+  Joints target = measured(loop);
+  loop.set_command(position_frame(target));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return sim_state()["servo"]["frames"].get<int>() > 10; }));
+  call("set_state", {{"state", 4}});  // as UFACTORY Studio or another program could
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
+  EXPECT_NE(loop.fault_text().find("the control box left servo mode: stopped"), std::string::npos) << loop.fault_text();
+
+  const auto recovered = loop.paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  target[0] += 0.2;
+  loop.set_command(position_frame(target));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), target, 2e-3); }))
+      << loop.fault_text() << " " << sim_state().dump();
+  EXPECT_EQ(loop.last_write(), IoResult::kOk) << loop.fault_text();
+}
+
 TEST_F(XarmDriverTest, ControllerErrorsAreFaultsInTheControllersWordsAndRecoverClearsThem) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kDof);
