@@ -55,6 +55,21 @@ std::int64_t integer_field(const json& request, const std::string& op, const cha
   return field->get<std::int64_t>();
 }
 
+std::vector<double> numbers_field(const json& request, const std::string& op, const char* name, std::size_t count,
+                                  const char* unit) {
+  const auto field = request.find(name);
+  const std::string expected =
+      "op \"" + op + "\" needs \"" + name + "\": " + std::to_string(count) + " numbers (" + unit + ")";
+  if (field == request.end() || !field->is_array() || field->size() != count) throw RequestError(expected);
+  std::vector<double> numbers;
+  numbers.reserve(count);
+  for (const json& value : *field) {
+    if (!value.is_number()) throw RequestError(expected);
+    numbers.push_back(value.get<double>());
+  }
+  return numbers;
+}
+
 double number_field(const json& request, const std::string& op, const char* name) {
   const auto field = request.find(name);
   if (field == request.end() || !field->is_number()) {

@@ -1,5 +1,6 @@
 // The control channel's ops (README.md in this folder): what tests ask the simulator to report
 // or to do wrong.
+#include <algorithm>
 #include <string>
 
 #include <spdlog/spdlog.h>
@@ -24,14 +25,9 @@ constexpr std::string_view kGarbageLine = "robotd-realman-sim garbage: }{ not JS
 constexpr std::string_view kGarbageDatagram = "\x01\x02 robotd-realman-sim garbage: not a push\r\n";
 
 JointValues joints_from(const json& request, std::size_t dof) {
-  const auto field = request.find("joints_rad");
-  const std::string expected = "op \"set_joints\" needs \"joints_rad\": " + std::to_string(dof) + " numbers (rad)";
-  if (field == request.end() || !field->is_array() || field->size() != dof) throw RequestError(expected);
+  const std::vector<double> numbers = sim_control::numbers_field(request, "set_joints", "joints_rad", dof, "rad");
   JointValues joints{};
-  for (std::size_t j = 0; j < dof; ++j) {
-    if (!(*field)[j].is_number()) throw RequestError(expected);
-    joints[j] = (*field)[j].get<double>();
-  }
+  std::copy(numbers.begin(), numbers.end(), joints.begin());
   return joints;
 }
 

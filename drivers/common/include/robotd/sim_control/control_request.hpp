@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -30,6 +31,9 @@ std::int64_t integer_field(const nlohmann::json& request, const std::string& op,
                            std::int64_t max);
 /// A required number field.
 double number_field(const nlohmann::json& request, const std::string& op, const char* name);
+/// A required array of exactly `count` numbers, in `unit` (named in the error).
+std::vector<double> numbers_field(const nlohmann::json& request, const std::string& op, const char* name,
+                                  std::size_t count, const char* unit);
 /// A required true/false field.
 bool boolean_field(const nlohmann::json& request, const std::string& op, const char* name);
 
