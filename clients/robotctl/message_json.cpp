@@ -139,6 +139,34 @@ Json to_json(const robotd::PoseStamped& pose) {
               {"orientation", Json{{"x", q.x}, {"y", q.y}, {"z", q.z}, {"w", q.w}}}};
 }
 
+Json to_json(const robotd::Joy& joy) {
+  // Message order, header last as in the PI Plus message.
+  return Json{{"l_horizontal", joy.l_horizontal},
+              {"l_vertical", joy.l_vertical},
+              {"lt", joy.lt},
+              {"r_horizontal", joy.r_horizontal},
+              {"r_vertical", joy.r_vertical},
+              {"rt", joy.rt},
+              {"dpad_horizontal", joy.dpad_horizontal},
+              {"dpad_vertical", joy.dpad_vertical},
+              {"a", joy.a},
+              {"b", joy.b},
+              {"x", joy.x},
+              {"y", joy.y},
+              {"lb", joy.lb},
+              {"rb", joy.rb},
+              {"back", joy.back},
+              {"start", joy.start},
+              {"center", joy.center},
+              {"l", joy.l},
+              {"r", joy.r},
+              {"header", to_json(joy.header)}};
+}
+
+Json to_json(const robotd::PolicyData& data) {
+  return Json{{"header", to_json(data.header)}, {"data_type", data.data_type}, {"data", data.data}};
+}
+
 std::string compact_text(const Json& json) { return json.dump(-1, ' ', false, Json::error_handler_t::replace); }
 
 std::string pretty_text(const Json& json) { return json.dump(2, ' ', false, Json::error_handler_t::replace); }

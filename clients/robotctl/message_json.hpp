@@ -18,6 +18,8 @@ Json to_json(const robotd::SessionStatus& status);
 Json to_json(const robotd::JointState& state);
 Json to_json(const robotd::Imu& imu);
 Json to_json(const robotd::PoseStamped& pose);
+Json to_json(const robotd::Joy& joy);
+Json to_json(const robotd::PolicyData& data);
 
 /// One line; invalid UTF-8 from a device is replaced rather than failing the output.
 std::string compact_text(const Json& json);

@@ -1,6 +1,8 @@
 #include "message_text.hpp"
 
+#include <array>
 #include <cstdint>
+#include <cstdio>
 #include <utility>
 
 #include "text_format.hpp"
@@ -149,6 +151,38 @@ std::string imu_text(const robotd::Imu& imu) {
                                      signed_fixed(q.z, 4) + "  w " + signed_fixed(q.w, 4)) +
          labelled("angular", vector_text(imu.angular_velocity) + " rad/s") +
          labelled("linear", vector_text(imu.linear_acceleration) + " m/s²");
+}
+
+std::string joy_text(const robotd::Joy& joy) {
+  const auto stick = [](float horizontal, float vertical) {
+    return "h " + signed_fixed(horizontal, 3) + "  v " + signed_fixed(vertical, 3);
+  };
+  const std::vector<std::pair<std::string, float>> buttons = {
+      {"A", joy.a},       {"B", joy.b},         {"X", joy.x},           {"Y", joy.y},  {"LB", joy.lb}, {"RB", joy.rb},
+      {"back", joy.back}, {"start", joy.start}, {"center", joy.center}, {"L3", joy.l}, {"R3", joy.r}};
+  std::vector<std::string> held;
+  for (const auto& [name, value] : buttons) {
+    if (value != 0.0F) held.push_back(name);
+  }
+  return joy.header.frame_id + "  stamp " + stamp_text(joy.header.stamp) + "\n" +
+         labelled("left stick", stick(joy.l_horizontal, joy.l_vertical)) +
+         labelled("right stick", stick(joy.r_horizontal, joy.r_vertical)) +
+         labelled("triggers", "lt " + fixed(joy.lt, 3) + "  rt " + fixed(joy.rt, 3)) +
+         labelled("d-pad", stick(joy.dpad_horizontal, joy.dpad_vertical)) +
+         labelled("buttons", held.empty() ? "none" : join(held, " "));
+}
+
+std::string policy_data_text(const robotd::PolicyData& data) {
+  std::vector<std::string> values;
+  values.reserve(data.data.size());
+  for (const double value : data.data) {
+    std::array<char, 32> text{};
+    std::snprintf(text.data(), text.size(), "%.6g", value);
+    values.emplace_back(text.data());
+  }
+  return "policy_data  " + data.data_type + "  stamp " + stamp_text(data.header.stamp) + "\n" +
+         labelled("data",
+                  std::to_string(data.data.size()) + " values" + (values.empty() ? "" : ": " + join(values, " ")));
 }
 
 }  // namespace robotctl

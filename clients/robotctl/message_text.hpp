@@ -18,6 +18,10 @@ std::string session_table(const robotd::SessionStatus& status);
 std::string joint_state_text(const robotd::JointState& state);
 std::string imu_text(const robotd::Imu& imu);
 std::string end_pose_text(const robotd::PoseStamped& pose);
+/// Sticks, triggers and d-pad, and the names of the buttons held.
+std::string joy_text(const robotd::Joy& joy);
+/// data_type, stamp, and the values (each to 6 significant digits).
+std::string policy_data_text(const robotd::PolicyData& data);
 
 /// The state name, followed by robotd's explanation when it says more ("ESTOP (e-stop engaged by ...)").
 std::string state_text(const robotd::DeviceStatus& status);

@@ -8,8 +8,12 @@
 #include <time.h>
 #include <utility>
 
+#include "robotd/driver/monotonic_clock.hpp"
+
 namespace robotd::sim {
 namespace {
+
+using driver::monotonic_now_ns;
 
 using driver::CommandFrame;
 using driver::FaultInfo;
@@ -17,12 +21,6 @@ using driver::Feedback;
 using driver::IoResult;
 using driver::JointCommand;
 using driver::JointCommandKind;
-
-std::int64_t monotonic_now_ns() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + static_cast<std::int64_t>(now.tv_nsec);
-}
 
 bool is_finite(const JointCommand& command) noexcept {
   return std::isfinite(command.position_rad) && std::isfinite(command.velocity_rad_s) && std::isfinite(command.kp) &&
@@ -75,6 +73,13 @@ Result<void> SimDriver::configure(const nlohmann::json& params) {
   rt_snapshot_.estop = false;
   snapshot_.store(rt_snapshot_);
   change_injected_faults([](InjectedFaults& faults) { faults = InjectedFaults{}; });
+  // A still base: level, not turning, feeling gravity (until set_imu says otherwise).
+  rt_imu_ = driver::ImuSample{};
+  rt_imu_.linear_acceleration_m_s2 = {0, 0, kStandardGravity_m_s2};
+  {
+    const std::lock_guard lock(imu_writer_mutex_);
+    imu_.store(rt_imu_);
+  }
   configured_ = true;
   return {};
 }
@@ -135,6 +140,7 @@ IoResult SimDriver::read_at(std::int64_t now_ns, Feedback& out, FaultInfo& fault
   advance_physics(now_ns);
   if (const IoResult status = injected_link_status(fault); status != IoResult::kOk) return status;
   if (rt_injected_faults_.feedback_stopped) return IoResult::kNoNewData;
+  if (params_.imu) imu_.try_load(rt_imu_);  // racing a set_imu: the previous sample, one tick longer
   fill_feedback(out);
   return IoResult::kOk;
 }
@@ -225,8 +231,7 @@ void SimDriver::fill_feedback(Feedback& out) const noexcept {
   }
   out.estop_input = estop_input_.load(std::memory_order_relaxed);
   out.has_imu = params_.imu;
-  out.imu = driver::ImuSample{};
-  if (params_.imu) out.imu.linear_acceleration_m_s2 = {0, 0, kStandardGravity_m_s2};
+  out.imu = params_.imu ? rt_imu_ : driver::ImuSample{};
 }
 
 }  // namespace robotd::sim

@@ -101,6 +101,7 @@ class SimDriver final : public driver::Driver {
   Result<nlohmann::json> raise_fault(const nlohmann::json& args);
   Result<nlohmann::json> set_external_torque(const nlohmann::json& args);
   Result<nlohmann::json> stall(const nlohmann::json& args);
+  Result<nlohmann::json> set_imu(const nlohmann::json& args);
   Result<nlohmann::json> command_latency(const nlohmann::json& args);
   Result<nlohmann::json> state(const nlohmann::json& args) const;
   std::optional<std::size_t> joint_argument(JsonReader& reader, const nlohmann::json& args) const;
@@ -131,12 +132,15 @@ class SimDriver final : public driver::Driver {
   driver::SeqLock<InjectedFaults> injected_faults_;
   std::mutex injected_faults_writer_mutex_;  // serialises non-RT writers; never taken by the RT thread
   driver::SeqLock<SimSnapshot> snapshot_;
+  driver::SeqLock<driver::ImuSample> imu_;  // what the IMU reports (set_imu); written under imu_writer_mutex_
+  std::mutex imu_writer_mutex_;
 
   // RT thread only.
   std::array<JointState, driver::kMaxJoints> joints_{};
   driver::CommandFrame command_{};
   InjectedFaults rt_injected_faults_{};
   SimSnapshot rt_snapshot_{};
+  driver::ImuSample rt_imu_{};
   std::uint64_t rt_link_generation_ = 0;
   bool rt_clock_started_ = false;
   std::int64_t rt_last_step_ns_ = 0;

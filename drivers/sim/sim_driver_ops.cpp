@@ -23,7 +23,7 @@ struct OpSpec {
   std::string_view help;
 };
 
-constexpr std::array<OpSpec, 8> kOps{{
+constexpr std::array<OpSpec, 9> kOps{{
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
     {"estop_input", R"({"pressed": bool}: press or release the simulated controller's own e-stop button)"},
     {"disconnect",
@@ -34,6 +34,9 @@ constexpr std::array<OpSpec, 8> kOps{{
      R"(damp until recover())"},
     {"set_external_torque",
      R"({"joint": name or index, "torque_nm": number}: set the constant load on a joint in N·m (e.g. gravity))"},
+    {"set_imu",
+     R"({"orientation_xyzw": [x, y, z, w] or "rpy_deg": [roll, pitch, yaw], "angular_velocity_rad_s": [x, y, z], )"
+     R"("linear_acceleration_m_s2": [x, y, z]}, each optional: what the simulated IMU reports from now on)"},
     {"stall", R"({"ms": 1..10000}: the next read() blocks this long, like a driver hung on its bus (fault injection))"},
     {"command_latency",
      R"({"reset": bool, "samples": bool}: time from a client's publish (ControlCommand.sent_steady_ns) to the )"
@@ -143,6 +146,7 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
     if (op == "raise_fault") return raise_fault(arguments);
     if (op == "set_external_torque") return set_external_torque(arguments);
     if (op == "stall") return stall(arguments);
+    if (op == "set_imu") return set_imu(arguments);
     if (op == "command_latency") return command_latency(arguments);
     if (op == "state") return state(arguments);
   } catch (const std::exception& e) {
@@ -230,6 +234,59 @@ Result<nlohmann::json> SimDriver::stall(const nlohmann::json& args) {
   if (!errors.empty()) return invalid_arguments("stall", errors);
   stall_ns_.store(*ms * 1'000'000, std::memory_order_release);
   return nlohmann::json{{"stall_ms", *ms}};
+}
+
+Result<nlohmann::json> SimDriver::set_imu(const nlohmann::json& args) {
+  if (!params_.imu) return make_error(ErrorCode::kRefused, "set_imu: this device has no IMU (params.imu is false)");
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  const auto triple = [&](std::string_view key) -> std::optional<std::array<double, 3>> {
+    const auto values = reader.number_array(key);
+    if (!values) return std::nullopt;
+    if (values->size() != 3) {
+      reader.error(key, "expected 3 numbers, got " + std::to_string(values->size()));
+      return std::nullopt;
+    }
+    return std::array<double, 3>{(*values)[0], (*values)[1], (*values)[2]};
+  };
+  const auto quaternion = reader.number_array("orientation_xyzw");
+  const auto rpy_deg = triple("rpy_deg");
+  const auto angular_velocity = triple("angular_velocity_rad_s");
+  const auto linear_acceleration = triple("linear_acceleration_m_s2");
+  if (quaternion && rpy_deg) reader.error("rpy_deg", "give orientation_xyzw or rpy_deg, not both");
+  double norm = 0;
+  if (quaternion) {
+    for (const double value : *quaternion) norm += value * value;
+    norm = std::sqrt(norm);
+    if (quaternion->size() != 4 || norm < 1e-9) {
+      reader.error("orientation_xyzw", "expected 4 numbers x, y, z, w of a non-zero quaternion");
+    }
+  }
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("set_imu", errors);
+
+  const std::lock_guard lock(imu_writer_mutex_);
+  driver::ImuSample sample = imu_.load();
+  if (quaternion) {
+    for (std::size_t i = 0; i < 4; ++i) sample.orientation_xyzw[i] = (*quaternion)[i] / norm;
+  }
+  if (rpy_deg) {  // roll about x, then pitch about y, then yaw about z (q = yaw * pitch * roll)
+    constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+    const double cr = std::cos((*rpy_deg)[0] * kRadPerDeg / 2);
+    const double sr = std::sin((*rpy_deg)[0] * kRadPerDeg / 2);
+    const double cp = std::cos((*rpy_deg)[1] * kRadPerDeg / 2);
+    const double sp = std::sin((*rpy_deg)[1] * kRadPerDeg / 2);
+    const double cy = std::cos((*rpy_deg)[2] * kRadPerDeg / 2);
+    const double sy = std::sin((*rpy_deg)[2] * kRadPerDeg / 2);
+    sample.orientation_xyzw = {sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy,
+                               cr * cp * cy + sr * sp * sy};
+  }
+  if (angular_velocity) sample.angular_velocity_rad_s = *angular_velocity;
+  if (linear_acceleration) sample.linear_acceleration_m_s2 = *linear_acceleration;
+  imu_.store(sample);
+  return nlohmann::json{{"orientation_xyzw", sample.orientation_xyzw},
+                        {"angular_velocity_rad_s", sample.angular_velocity_rad_s},
+                        {"linear_acceleration_m_s2", sample.linear_acceleration_m_s2}};
 }
 
 Result<nlohmann::json> SimDriver::command_latency(const nlohmann::json& args) {

@@ -24,6 +24,30 @@ std::int32_t enum_to_c(Enum value) {
   return static_cast<std::int32_t>(value);
 }
 
+// The Joy axes and buttons, which the C and the C++ struct name alike.
+template <class From, class To>
+void copy_joy_values(const From& in, To& out) {
+  out.l_horizontal = in.l_horizontal;
+  out.l_vertical = in.l_vertical;
+  out.lt = in.lt;
+  out.r_horizontal = in.r_horizontal;
+  out.r_vertical = in.r_vertical;
+  out.rt = in.rt;
+  out.dpad_horizontal = in.dpad_horizontal;
+  out.dpad_vertical = in.dpad_vertical;
+  out.a = in.a;
+  out.b = in.b;
+  out.x = in.x;
+  out.y = in.y;
+  out.lb = in.lb;
+  out.rb = in.rb;
+  out.back = in.back;
+  out.start = in.start;
+  out.center = in.center;
+  out.l = in.l;
+  out.r = in.r;
+}
+
 void session_info_to_c(const SessionInfo& in, robotd_msgs_msg_dds__SessionInfo_& out) {
   out.uuid = c_string(in.uuid);
   out.node_name = c_string(in.node_name);
@@ -185,6 +209,40 @@ PoseStamped Wire<PoseStamped>::from_c(const C& in) {
   out.position = {in.pose.position.x, in.pose.position.y, in.pose.position.z};
   out.orientation = {in.pose.orientation.x, in.pose.orientation.y, in.pose.orientation.z, in.pose.orientation.w};
   return out;
+}
+
+const dds_topic_descriptor_t& Wire<Vector3>::descriptor() { return geometry_msgs_msg_dds__Vector3__desc; }
+void Wire<Vector3>::to_c(const Vector3& in, C& out, CArena& /*arena*/) { out = {in.x, in.y, in.z}; }
+Vector3 Wire<Vector3>::from_c(const C& in) { return {in.x, in.y, in.z}; }
+
+const dds_topic_descriptor_t& Wire<Quaternion>::descriptor() { return geometry_msgs_msg_dds__Quaternion__desc; }
+void Wire<Quaternion>::to_c(const Quaternion& in, C& out, CArena& /*arena*/) { out = {in.x, in.y, in.z, in.w}; }
+Quaternion Wire<Quaternion>::from_c(const C& in) { return {in.x, in.y, in.z, in.w}; }
+
+const dds_topic_descriptor_t& Wire<Joy>::descriptor() { return robotd_msgs_msg_dds__Joy__desc; }
+
+void Wire<Joy>::to_c(const Joy& in, C& out, CArena& /*arena*/) {
+  copy_joy_values(in, out);
+  header_to_c(in.header, out.header);
+}
+
+Joy Wire<Joy>::from_c(const C& in) {
+  Joy out;
+  copy_joy_values(in, out);
+  out.header = header_from_c(in.header);
+  return out;
+}
+
+const dds_topic_descriptor_t& Wire<PolicyData>::descriptor() { return robotd_msgs_msg_dds__PolicyData__desc; }
+
+void Wire<PolicyData>::to_c(const PolicyData& in, C& out, CArena& /*arena*/) {
+  header_to_c(in.header, out.header);
+  out.data_type = c_string(in.data_type);
+  view_sequence(out.data, in.data);
+}
+
+PolicyData Wire<PolicyData>::from_c(const C& in) {
+  return PolicyData{header_from_c(in.header), copy_string(in.data_type), copy_sequence<double>(in.data)};
 }
 
 const dds_topic_descriptor_t& Wire<SessionStatus>::descriptor() { return robotd_msgs_msg_dds__SessionStatus__desc; }

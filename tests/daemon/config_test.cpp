@@ -48,7 +48,7 @@ std::size_t count_lines_starting_with(const std::string& text, const std::string
 TEST(Config, ShippedConfigParsesWithItsSimulatedDevicesOnLoopback) {
   const Result<Config> config = load_config_file(ROBOTD_SOURCE_DIR "/config/robotd.json");
   ASSERT_TRUE(config.ok()) << config.error().message;
-  ASSERT_EQ(config.value().devices.size(), 6u);
+  ASSERT_EQ(config.value().devices.size(), 7u);
   EXPECT_EQ(config.value().devices[0].name, "arm");
   EXPECT_EQ(config.value().devices[1].name, "humanoid");
   EXPECT_EQ(config.value().devices[0].driver, "sim");
@@ -60,6 +60,8 @@ TEST(Config, ShippedConfigParsesWithItsSimulatedDevicesOnLoopback) {
   EXPECT_EQ(config.value().devices[4].driver, "realman");
   EXPECT_EQ(config.value().devices[5].driver, "xarm");
   EXPECT_FALSE(config.value().devices[5].required);
+  EXPECT_EQ(config.value().devices[6].driver, "hightorque");
+  EXPECT_FALSE(config.value().devices[6].required);
   EXPECT_FALSE(config.value().devices[4].required);
   EXPECT_EQ(config.value().dds.network_interface, "127.0.0.1");
   EXPECT_FALSE(config.value().dds.multicast);

@@ -1,6 +1,6 @@
 // The event ring between one producer and one consumer: first in, first out; a full ring
 // refuses the newest item instead of overwriting the oldest.
-#include "rt/spsc_ring.hpp"
+#include "robotd/driver/spsc_ring.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-namespace robotd::rt {
+namespace robotd::driver {
 namespace {
 
 TEST(SpscRing, PopsItemsInTheOrderTheyWerePushed) {
@@ -107,4 +107,4 @@ TEST(SpscRing, ConcurrentProducerThatDoesNotWaitLosesOnlyWhatPushReportedAsRefus
 }
 
 }  // namespace
-}  // namespace robotd::rt
+}  // namespace robotd::driver

@@ -53,6 +53,11 @@ inline auto fields(const PoseStamped& m) { return std::tie(m.header, m.position,
 inline auto fields(const Imu& m) {
   return std::tie(m.header, m.orientation, m.angular_velocity, m.linear_acceleration);
 }
+inline auto fields(const Joy& m) {
+  return std::tie(m.l_horizontal, m.l_vertical, m.lt, m.r_horizontal, m.r_vertical, m.rt, m.dpad_horizontal,
+                  m.dpad_vertical, m.a, m.b, m.x, m.y, m.lb, m.rb, m.back, m.start, m.center, m.l, m.r, m.header);
+}
+inline auto fields(const PolicyData& m) { return std::tie(m.header, m.data_type, m.data); }
 inline auto fields(const SessionStatus& m) {
   return std::tie(m.header, m.state, m.policy_name, m.policy_file_name, m.active_uuids, m.node_names, m.motor_counts,
                   m.sessions);
@@ -158,6 +163,24 @@ Imu sample() {
   return Imu{header(3), Quaternion{0.1, 0.2, 0.3, 0.9}, Vector3{1, 2, 3}, Vector3{4, 5, 9.81}};
 }
 template <>
+Vector3 sample() {
+  return Vector3{10.5, -20.25, 30.125};
+}
+template <>
+Quaternion sample() {
+  return Quaternion{0.1, -0.2, 0.3, 0.92};
+}
+template <>
+Joy sample() {
+  // Every field a different value, so a swapped pair shows.
+  return Joy{-0.25F, 0.5F, 0.75F, -1.0F, 1.0F, 0.125F, -1.0F, 1.0F,  2.0F,  3.0F,
+             4.0F,   5.0F, 6.0F,  7.0F,  8.0F, 9.0F,   10.0F, 11.0F, 12.0F, header(10)};
+}
+template <>
+PolicyData sample() {
+  return PolicyData{header(11), "action", {0.5, -1.5, 1e-9}};
+}
+template <>
 SessionStatus sample() {
   return SessionStatus{header(4),
                        "active",
@@ -259,10 +282,11 @@ template <class T>
 class WireConversion : public ::testing::Test {};
 
 using AllWireTypes =
-    ::testing::Types<ControlCommand, JointState, Imu, PoseStamped, SessionStatus, DeviceStatus, RequestControlRequest,
-                     RequestControlResponse, ReleaseControlRequest, ReleaseControlResponse, GetAvailableMotorsRequest,
-                     GetAvailableMotorsResponse, ResetZeroRequest, ResetZeroResponse, EstopRequest, EstopResponse,
-                     ListDevicesRequest, ListDevicesResponse, DeviceCallRequest, DeviceCallResponse>;
+    ::testing::Types<ControlCommand, JointState, Imu, PoseStamped, Vector3, Quaternion, Joy, PolicyData, SessionStatus,
+                     DeviceStatus, RequestControlRequest, RequestControlResponse, ReleaseControlRequest,
+                     ReleaseControlResponse, GetAvailableMotorsRequest, GetAvailableMotorsResponse, ResetZeroRequest,
+                     ResetZeroResponse, EstopRequest, EstopResponse, ListDevicesRequest, ListDevicesResponse,
+                     DeviceCallRequest, DeviceCallResponse>;
 
 // Names each typed test after its DDS type, e.g. WireConversion/RequestControl_Request.
 struct TypeNames {

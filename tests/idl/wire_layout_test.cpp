@@ -22,6 +22,7 @@
 #include "wire/qos.hpp"
 #include "wire/service.hpp"
 #include "wire/topic_io.hpp"
+#include "wire/topics.hpp"
 #include "wire_test_support.hpp"
 
 namespace robotd::wire {
@@ -215,6 +216,34 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   expected.string("u1").string("node").string("arm").count(2).i32(3).i32(4);
   expected.i32(2).i32(1).i32(0).i32(500).i32(250).i32(7).u32(8);
   expected.u64(0x0102030405060708);  // 8-aligned relative to the body start
+  EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(raw.reader.get())));
+}
+
+TEST(WireLayout, JoyPutsItsNineteenFloatsFirstAndTheHeaderLastLikeThePiPlus) {
+  const testing::PrivateDomain domain;
+  auto participant = Participant::create(domain.settings());
+  ASSERT_TRUE(participant) << participant.error().message;
+  const std::string topic = data_topic(kDefaultJoyTopicName);
+  auto writer = TopicWriter<Joy>::create(participant.value(), topic, reliable_qos(10).get());
+  ASSERT_TRUE(writer) << writer.error().message;
+  RawReader<Joy> raw(participant.value(), topic);
+  ASSERT_TRUE(testing::wait_until([&] { return writer.value().matched_readers() == 1; }));
+
+  Joy joy;
+  joy.l_vertical = 1.0F;
+  joy.rt = 0.5F;
+  joy.a = 1.0F;
+  joy.r = 1.0F;
+  joy.header.stamp = Time{7, 8};
+  joy.header.frame_id = "js0";
+  ASSERT_TRUE(writer.value().write(joy));
+
+  Xcdr1 expected;
+  expected.f32(0).f32(1.0F).f32(0).f32(0).f32(0).f32(0.5F).f32(0).f32(0);  // sticks, triggers, d-pad
+  expected.f32(1.0F);                                                       // a
+  for (int button = 0; button < 9; ++button) expected.f32(0);               // b .. l
+  expected.f32(1.0F);                                                       // r
+  expected.i32(7).u32(8).string("js0");                                     // header, at offset 76
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(raw.reader.get())));
 }
 

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "client_core.hpp"
+#include "policy_data_publisher_impl.hpp"
 #include "wire/dds_settings.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
@@ -166,6 +167,16 @@ Subscription Client::on_end_pose(std::function<void(const PoseStamped&)> callbac
   return core_->subscribe<PoseStamped>(wire::kEndPoseTopic, qos.get(), std::move(callback));
 }
 
+Subscription Client::on_joy(std::function<void(const Joy&)> callback, const std::string& topic) {
+  const auto qos = wire::reliable_qos(kStateHistoryDepth);
+  return core_->subscribe<Joy>(wire::data_topic(topic), qos.get(), std::move(callback));
+}
+
+Subscription Client::on_policy_data(std::function<void(const PolicyData&)> callback) {
+  const auto qos = wire::reliable_qos(kStateHistoryDepth);
+  return core_->subscribe<PolicyData>(wire::kPolicyDataTopic, qos.get(), std::move(callback));
+}
+
 Result<JointState> Client::next_joint_state(const std::string& device, std::chrono::milliseconds timeout) {
   FirstValue<JointState> first;
   Subscription subscription = on_joint_states([&](const JointState& state) {
@@ -195,5 +206,13 @@ Result<SessionStatus> Client::session_status(std::chrono::milliseconds timeout) 
 }
 
 Result<void> Client::publish(const ControlCommand& command) { return core_->commands->write(command); }
+
+Result<PolicyDataPublisher> Client::policy_data_publisher() {
+  const auto qos = wire::reliable_qos(kStateHistoryDepth);
+  auto writer = wire::TopicWriter<PolicyData>::create(core_->participant, wire::kPolicyDataTopic, qos.get());
+  if (!writer) return writer.error();
+  return PolicyDataPublisher(
+      std::make_unique<PolicyDataPublisher::Impl>(PolicyDataPublisher::Impl{core_, std::move(writer.value())}));
+}
 
 }  // namespace robotd

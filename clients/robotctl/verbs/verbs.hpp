@@ -31,6 +31,7 @@ Verb add_release_verb(CLI::App& app);
 Verb add_move_verb(CLI::App& app);
 Verb add_estop_verb(CLI::App& app);
 Verb add_echo_verb(CLI::App& app);
+Verb add_record_verb(CLI::App& app);
 Verb add_call_verb(CLI::App& app);
 Verb add_top_verb(CLI::App& app);
 

@@ -13,6 +13,15 @@ namespace {
 // Deep enough that a subscriber that misses a few 1 kHz samples can still catch up.
 constexpr int kStateHistoryDepth = 10;
 
+template <class T>
+Result<void> create_writer(const wire::Participant& participant, std::string_view topic, const dds_qos_t* qos,
+                           std::unique_ptr<wire::TopicWriter<T>>& out) {
+  auto writer = wire::TopicWriter<T>::create(participant, topic, qos);
+  if (!writer) return writer.error();
+  out = std::make_unique<wire::TopicWriter<T>>(std::move(writer.value()));
+  return {};
+}
+
 }  // namespace
 
 Daemon::Daemon(config::Config config) : config_(std::move(config)) {}
@@ -98,19 +107,13 @@ Result<void> Daemon::start_dds() {
   participant_ = std::make_unique<wire::Participant>(std::move(participant.value()));
 
   const auto state_qos = wire::reliable_qos(kStateHistoryDepth);
-  auto joint_states = wire::TopicWriter<JointState>::create(*participant_, wire::kJointStatesTopic, state_qos.get());
-  if (!joint_states) return joint_states.error();
-  joint_states_ = std::make_unique<wire::TopicWriter<JointState>>(std::move(joint_states.value()));
-  auto imu = wire::TopicWriter<Imu>::create(*participant_, wire::kImuTopic, state_qos.get());
-  if (!imu) return imu.error();
-  imu_ = std::make_unique<wire::TopicWriter<Imu>>(std::move(imu.value()));
-  auto device_status =
-      wire::TopicWriter<DeviceStatus>::create(*participant_, wire::kDeviceStatusTopic, state_qos.get());
-  if (!device_status) return device_status.error();
-  device_status_ = std::make_unique<wire::TopicWriter<DeviceStatus>>(std::move(device_status.value()));
-  auto end_pose = wire::TopicWriter<PoseStamped>::create(*participant_, wire::kEndPoseTopic, state_qos.get());
-  if (!end_pose) return end_pose.error();
-  end_pose_ = std::make_unique<wire::TopicWriter<PoseStamped>>(std::move(end_pose.value()));
+  for (const auto& created : {create_writer(*participant_, wire::kJointStatesTopic, state_qos.get(), joint_states_),
+                              create_writer(*participant_, wire::kImuTopic, state_qos.get(), imu_),
+                              create_writer(*participant_, wire::kDeviceStatusTopic, state_qos.get(), device_status_),
+                              create_writer(*participant_, wire::kEndPoseTopic, state_qos.get(), end_pose_)}) {
+    if (!created) return created;
+  }
+  if (auto imu_writers = start_imu_writers(); !imu_writers) return imu_writers;
 
   auto session_status = dds::SessionStatusPublisher::create(
       *participant_, std::chrono::milliseconds(config_.daemon.session_status_period_ms));
@@ -123,7 +126,15 @@ Result<void> Daemon::start_dds() {
       [this] { session_status_->changed(); });
   intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_);
 
-  const dds::StateWriters writers{joint_states_.get(), imu_.get(), device_status_.get(), end_pose_.get()};
+  const dds::StateWriters writers{.joint_states = joint_states_.get(),
+                                  .imu = {.imu = imu_.get(),
+                                          .yesense_rpy = yesense_rpy_.get(),
+                                          .yesense_acc = yesense_acc_.get(),
+                                          .yesense_gyro = yesense_gyro_.get(),
+                                          .yesense_quat = yesense_quat_.get(),
+                                          .yesense_imu = yesense_imu_.get()},
+                                  .device_status = device_status_.get(),
+                                  .end_pose = end_pose_.get()};
   std::vector<service::DeviceObserver*> observers;
   std::vector<device::BlackBox*> boxes;
   for (std::size_t i = 0; i < devices_.size(); ++i) {
@@ -143,6 +154,7 @@ Result<void> Daemon::start_dds() {
   session_status_->start(*sessions_);
   if (auto started = intake_->start(); !started) return started;
   services_->start();
+  if (auto joystick = start_joystick(); !joystick) return joystick;
   spdlog::info(
       "DDS: domain {}, {}", config_.dds.domain_id,
       config_.dds.cyclonedds_xml.empty()
@@ -153,9 +165,38 @@ Result<void> Daemon::start_dds() {
   return {};
 }
 
+Result<void> Daemon::start_imu_writers() {
+  const bool any_imu =
+      std::any_of(devices_.begin(), devices_.end(), [](const auto& device) { return device->model().has_imu; });
+  if (!any_imu || !config_.daemon.yesense_imu_topics) return {};
+  const auto qos = wire::reliable_qos(kStateHistoryDepth);  // PI Plus clients subscribe reliable
+  for (const auto& created : {create_writer(*participant_, wire::kYesenseRpyTopic, qos.get(), yesense_rpy_),
+                              create_writer(*participant_, wire::kYesenseAccTopic, qos.get(), yesense_acc_),
+                              create_writer(*participant_, wire::kYesenseGyroTopic, qos.get(), yesense_gyro_),
+                              create_writer(*participant_, wire::kYesenseQuatTopic, qos.get(), yesense_quat_),
+                              create_writer(*participant_, wire::kYesenseImuTopic, qos.get(), yesense_imu_)}) {
+    if (!created) return created;
+  }
+  return {};
+}
+
+Result<void> Daemon::start_joystick() {
+  if (!config_.joystick) return {};
+  const auto qos = wire::reliable_qos(kStateHistoryDepth);
+  if (auto created = create_writer(*participant_, wire::data_topic(config_.joystick->topic), qos.get(), joy_);
+      !created) {
+    return created;
+  }
+  joystick_ = std::make_unique<joystick::JoystickSource>(
+      *config_.joystick, [writer = joy_.get()](const Joy& joy) { (void)writer->write(joy); });
+  joystick_->start();
+  return {};
+}
+
 void Daemon::stop() {
   if (stopped_) return;
   stopped_ = true;
+  if (joystick_) joystick_->stop();  // its last sample is neutral
   if (services_) services_->stop();
   if (intake_) intake_->stop();
   if (reconnector_) reconnector_->stop();
@@ -174,6 +215,13 @@ void Daemon::stop() {
   imu_.reset();
   device_status_.reset();
   end_pose_.reset();
+  joystick_.reset();
+  joy_.reset();
+  yesense_rpy_.reset();
+  yesense_acc_.reset();
+  yesense_gyro_.reset();
+  yesense_quat_.reset();
+  yesense_imu_.reset();
   participant_.reset();
   spdlog::info("robotd stopped: every device brought to its safe stop and disconnected");
 }

@@ -14,6 +14,7 @@
 #include "dds/state_publisher.hpp"
 #include "device/black_box.hpp"
 #include "device/device.hpp"
+#include "joystick/joystick_source.hpp"
 #include "rt/realtime_environment.hpp"
 #include "service/device_services.hpp"
 #include "service/reconnector.hpp"
@@ -41,6 +42,8 @@ class Daemon {
  private:
   Result<void> start_devices();
   Result<void> start_dds();
+  Result<void> start_imu_writers();
+  Result<void> start_joystick();
 
   config::Config config_;
   std::optional<rt::CpuLatencyRequest> cpu_latency_;
@@ -52,6 +55,14 @@ class Daemon {
   std::unique_ptr<wire::TopicWriter<Imu>> imu_;
   std::unique_ptr<wire::TopicWriter<DeviceStatus>> device_status_;
   std::unique_ptr<wire::TopicWriter<PoseStamped>> end_pose_;
+  // The PI Plus IMU node's topics, when a device has an IMU (and daemon.yesense_imu_topics).
+  std::unique_ptr<wire::TopicWriter<Vector3>> yesense_rpy_;
+  std::unique_ptr<wire::TopicWriter<Vector3>> yesense_acc_;
+  std::unique_ptr<wire::TopicWriter<Vector3>> yesense_gyro_;
+  std::unique_ptr<wire::TopicWriter<Quaternion>> yesense_quat_;
+  std::unique_ptr<wire::TopicWriter<Imu>> yesense_imu_;
+  std::unique_ptr<wire::TopicWriter<Joy>> joy_;
+  std::unique_ptr<joystick::JoystickSource> joystick_;
   std::unique_ptr<dds::SessionStatusPublisher> session_status_;
   std::unique_ptr<service::SessionService> sessions_;
   std::unique_ptr<service::DeviceServices> device_services_;

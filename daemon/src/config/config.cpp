@@ -37,6 +37,7 @@ void read_daemon(JsonReader& reader, DaemonConfig& daemon) {
       static_cast<int>(reader.integer_or("stats_window_ticks", daemon.stats_window_ticks, 100, 1'000'000));
   daemon.cpu_dma_latency_us =
       static_cast<std::int32_t>(reader.integer_or("cpu_dma_latency_us", daemon.cpu_dma_latency_us, -1, 1'000'000));
+  daemon.yesense_imu_topics = reader.boolean_or("yesense_imu_topics", daemon.yesense_imu_topics);
   if (daemon.min_session_timeout_ms > daemon.max_session_timeout_ms) {
     reader.error("min_session_timeout_ms", "must not exceed max_session_timeout_ms");
   }
@@ -143,6 +144,9 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
   JsonReader root(*document, "", errors);
   if (auto daemon = root.object("daemon")) read_daemon(*daemon, config.daemon);
   if (auto dds = root.object("dds")) read_dds(*dds, config.dds);
+  if (auto joystick = root.object("joystick")) {
+    if (auto read = joystick::read_joystick_config(*joystick, errors); read.enabled) config.joystick = std::move(read);
+  }
   const int cpu_count = static_cast<int>(sysconf(_SC_NPROCESSORS_CONF));
   root.require("devices", "an array with at least one device");
   std::set<std::string> names;

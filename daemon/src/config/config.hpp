@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "control/device_model.hpp"
+#include "joystick/joystick_config.hpp"
 #include "robotd/messages.hpp"
 #include "robotd/result.hpp"
 #include "rt/realtime_thread.hpp"
@@ -62,6 +63,7 @@ struct DaemonConfig {
   std::int32_t max_session_timeout_ms = 600'000;
   int stats_window_ticks = 5000;
   std::int32_t cpu_dma_latency_us = 0;  // PM QoS request held while robotd runs; -1 = none
+  bool yesense_imu_topics = true;       // also publish /imu as the PI Plus /yesense_imu/* topics
 };
 
 struct Config {
@@ -69,6 +71,7 @@ struct Config {
   DaemonConfig daemon;
   wire::DdsSettings dds;
   std::vector<DeviceConfig> devices;
+  std::optional<joystick::JoystickConfig> joystick;  // a game controller published on /joy; none = off
 };
 
 /// Parses and validates config text. On failure the error lists every problem found.

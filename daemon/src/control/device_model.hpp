@@ -25,6 +25,7 @@ struct DeviceModel {
   std::vector<driver::JointLimits> limits;
   std::vector<double> default_kp;
   std::vector<double> default_kd;
+  std::vector<double> zero_position_rad;  // what reset_zero leaves each joint reading
   bool supports_torque = false;
   BehaviorSupport behaviors;
   bool has_imu = false;

@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "dds/yesense_imu.hpp"
 #include "rt/monotonic_clock.hpp"
 
 namespace robotd::dds {
@@ -161,18 +162,27 @@ void StatePublisher::publish_joint_state(const device::LoopState& state) {
     ++joint_states_published_;
     last_published_stamp_ns_ = joint_state_.header.stamp.to_ns();
   }
-  if (device_.model().has_imu && state.feedback.has_imu && writers_.imu != nullptr) {
-    const driver::ImuSample& sample = state.feedback.imu;
-    Imu imu;
-    imu.header = joint_state_.header;
-    imu.orientation = {sample.orientation_xyzw[0], sample.orientation_xyzw[1], sample.orientation_xyzw[2],
-                       sample.orientation_xyzw[3]};
-    imu.angular_velocity = {sample.angular_velocity_rad_s[0], sample.angular_velocity_rad_s[1],
-                            sample.angular_velocity_rad_s[2]};
-    imu.linear_acceleration = {sample.linear_acceleration_m_s2[0], sample.linear_acceleration_m_s2[1],
-                               sample.linear_acceleration_m_s2[2]};
-    (void)writers_.imu->write(imu);
-  }
+  if (device_.model().has_imu && state.feedback.has_imu) publish_imu(state.feedback.imu, joint_state_.header);
+}
+
+void StatePublisher::publish_imu(const driver::ImuSample& sample, const Header& header) {
+  Imu imu;
+  imu.header = header;
+  imu.orientation = {sample.orientation_xyzw[0], sample.orientation_xyzw[1], sample.orientation_xyzw[2],
+                     sample.orientation_xyzw[3]};
+  imu.angular_velocity = {sample.angular_velocity_rad_s[0], sample.angular_velocity_rad_s[1],
+                          sample.angular_velocity_rad_s[2]};
+  imu.linear_acceleration = {sample.linear_acceleration_m_s2[0], sample.linear_acceleration_m_s2[1],
+                             sample.linear_acceleration_m_s2[2]};
+  const ImuWriters& writers = writers_.imu;
+  if (writers.imu != nullptr) (void)writers.imu->write(imu);
+  if (writers.yesense_imu == nullptr) return;  // the PI Plus topics are off
+  const YesenseImu yesense = yesense_imu(imu);
+  (void)writers.yesense_rpy->write(yesense.rpy_deg);
+  (void)writers.yesense_acc->write(yesense.acc_m_s2);
+  (void)writers.yesense_gyro->write(yesense.gyro_deg_s);
+  (void)writers.yesense_quat->write(yesense.quaternion);
+  (void)writers.yesense_imu->write(imu);
 }
 
 void StatePublisher::publish_end_pose(const device::LoopState& state) {

@@ -1,4 +1,5 @@
-// Per device, off the RT thread: publishes /joint_states (and /imu) at the device's state
+// Per device, off the RT thread: publishes /joint_states (and /imu with the PI Plus
+// /yesense_imu/* topics) at the device's state
 // rate and /device_status at the status rate, folds the loop's tick timings into the
 // statistics window, and acts on what the loop reports (sessions it ended, faults, black box).
 // It is the single reader of the loop's state mailbox and event rings.
@@ -20,9 +21,19 @@
 
 namespace robotd::dds {
 
+/// /imu and the PI Plus IMU node's topics; a null writer is not published.
+struct ImuWriters {
+  const wire::TopicWriter<Imu>* imu = nullptr;
+  const wire::TopicWriter<Vector3>* yesense_rpy = nullptr;   // degrees
+  const wire::TopicWriter<Vector3>* yesense_acc = nullptr;   // m/s²
+  const wire::TopicWriter<Vector3>* yesense_gyro = nullptr;  // deg/s
+  const wire::TopicWriter<Quaternion>* yesense_quat = nullptr;
+  const wire::TopicWriter<Imu>* yesense_imu = nullptr;
+};
+
 struct StateWriters {
   const wire::TopicWriter<JointState>* joint_states = nullptr;
-  const wire::TopicWriter<Imu>* imu = nullptr;
+  ImuWriters imu;
   const wire::TopicWriter<DeviceStatus>* device_status = nullptr;
   const wire::TopicWriter<PoseStamped>* end_pose = nullptr;
 };
@@ -50,6 +61,7 @@ class StatePublisher final : public service::DeviceObserver {
   void drain_loop(bool publish_state);
   void handle(const device::LoopEvent& event);
   void publish_joint_state(const device::LoopState& state);
+  void publish_imu(const driver::ImuSample& sample, const Header& header);
   void publish_end_pose(const device::LoopState& state);
   void publish_device_status();
 

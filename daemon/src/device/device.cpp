@@ -61,6 +61,7 @@ Result<void> Device::configure() {
     model_.limits.push_back(joint.limits);
     model_.default_kp.push_back(joint.default_kp);
     model_.default_kd.push_back(joint.default_kd);
+    model_.zero_position_rad.push_back(joint.zero_position_rad);
   }
   for (const auto& override_limits : config_.joint_limits) {
     const auto it = std::find(model_.joint_names.begin(), model_.joint_names.end(), override_limits.joint);

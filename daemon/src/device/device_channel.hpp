@@ -11,9 +11,9 @@
 #include <mutex>
 
 #include "control/command_validator.hpp"
+#include "robotd/driver/spsc_ring.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/messages.hpp"
-#include "rt/spsc_ring.hpp"
 #include "rt/triple_buffer.hpp"
 #include "session/session_table.hpp"
 
@@ -123,11 +123,11 @@ inline constexpr std::size_t kBlackBoxTicks = 512;
 
 struct DeviceChannel {
   rt::TripleBuffer<CommandSnapshot> commands;
-  rt::SpscRing<ControlEvent, 64> control_events;
+  driver::SpscRing<ControlEvent, 64> control_events;
   std::mutex control_events_producers;  // non-RT producers only
 
-  rt::SpscRing<LoopEvent, 256> loop_events;
-  rt::SpscRing<TickTiming, 16384> timings;
+  driver::SpscRing<LoopEvent, 256> loop_events;
+  driver::SpscRing<TickTiming, 16384> timings;
   rt::TripleBuffer<LoopState> state;
 
   std::array<BlackBoxRecord, kBlackBoxTicks> black_box{};

@@ -165,9 +165,10 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   }
   std::ostringstream off;
   for (const int joint : joints) {
-    const double position = after.feedback.joints[static_cast<std::size_t>(joint)].position_rad;
-    if (std::fabs(position) > kZeroTolerance_rad)
-      off << " " << model.joint_names[static_cast<std::size_t>(joint)] << "=" << position;
+    const auto j = static_cast<std::size_t>(joint);
+    const double position = after.feedback.joints[j].position_rad;
+    if (std::fabs(position - model.zero_position_rad[j]) > kZeroTolerance_rad)
+      off << " " << model.joint_names[j] << "=" << position;
   }
   if (!off.str().empty()) {
     return ResetZeroResponse{false, "zeroing did not take: motors not within " + std::to_string(kZeroTolerance_rad) +

@@ -11,9 +11,12 @@
 #include "codec/joint_units.hpp"
 #include "driver/parol6_ops.hpp"
 #include "kinematics/parol6_kinematics.hpp"
+#include "robotd/driver/monotonic_clock.hpp"
 
 namespace robotd::parol6 {
 namespace {
+
+using driver::monotonic_now_ns;
 
 using namespace std::chrono_literals;
 
@@ -21,12 +24,6 @@ constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::size_t kTrajectoryCapacity = 12'000;  // 120 s at 100 Hz
 constexpr std::size_t kSettleFrames = 30;            // a finished move holds its end point this long
 constexpr int kMaxReadsPerTick = 8;                  // 4 KiB: far more than a 10 ms exchange carries
-
-std::int64_t monotonic_now_ns() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * kNsPerSecond + now.tv_nsec;
-}
 
 }  // namespace
 

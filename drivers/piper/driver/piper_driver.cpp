@@ -9,10 +9,13 @@
 
 #include "driver/piper_ops.hpp"
 #include "kinematics/piper_kinematics.hpp"
+#include "robotd/driver/monotonic_clock.hpp"
 #include "robotd/transport/can_interface_check.hpp"
 
 namespace robotd::piper {
 namespace {
+
+using driver::monotonic_now_ns;
 
 using namespace std::chrono_literals;
 
@@ -20,12 +23,6 @@ constexpr int kMaxFramesPerRead = 512;  // ~1 ms of a saturated bus; the rest wa
 constexpr std::uint32_t kPiperBitrate = 1'000'000;
 constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::size_t kFirmwareReplyBytes = 88;  // 11 frames (spec §5.14)
-
-std::int64_t monotonic_now_ns() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * kNsPerSecond + now.tv_nsec;
-}
 
 bool is_reply(std::uint32_t id) {
   switch (id) {

@@ -1,7 +1,5 @@
 #include "simulator.hpp"
 
-#include <cerrno>
-#include <ctime>
 #include <utility>
 
 #include <spdlog/spdlog.h>
@@ -75,11 +73,7 @@ void Simulator::run(const volatile std::sig_atomic_t& stop) {
     send_garbage();
     if (!options_.quiet) log_changes();
 
-    wake_ns += kLoopPeriodNs;
-    if (wake_ns < now) wake_ns = now + kLoopPeriodNs;  // overran: start afresh, do not race
-    const timespec wake = to_timespec(wake_ns);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) == EINTR && stop == 0) {
-    }
+    wake_ns = sim_control::sleep_until_next_pass(wake_ns, now, kLoopPeriodNs, stop);
   }
   if (control_server_) control_server_->close();
   bus_->close();

@@ -88,6 +88,26 @@ struct Imu {
   Vector3 linear_acceleration;  // m/s²
 };
 
+/// A game controller's state (robotd_msgs/Joy), the PI Plus /hightorque_joy field for field
+/// (header last). Sticks and d-pad in -1..1, positive = left / up; triggers 0 (released) ..
+/// 1 (pressed); buttons 0 or 1. All zero = neutral.
+struct Joy {
+  float l_horizontal = 0, l_vertical = 0, lt = 0;
+  float r_horizontal = 0, r_vertical = 0, rt = 0;
+  float dpad_horizontal = 0, dpad_vertical = 0;
+  float a = 0, b = 0, x = 0, y = 0;
+  float lb = 0, rb = 0, back = 0, start = 0, center = 0, l = 0, r = 0;
+  Header header;  // frame_id = the joystick's device path
+};
+
+/// The PI Plus policy / data stream (robotd_msgs/PolicyData): what a policy observes and
+/// outputs, one data_type per sample ("state_q", "obs", "input", "action", "output_q", ...).
+struct PolicyData {
+  Header header;
+  std::string data_type;
+  std::vector<double> data;
+};
+
 struct SessionInfo {
   std::string uuid;
   std::string node_name;

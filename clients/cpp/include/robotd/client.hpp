@@ -3,6 +3,7 @@
 
 #include "robotd/client/client.hpp"
 #include "robotd/client/options.hpp"
+#include "robotd/client/policy_data_publisher.hpp"
 #include "robotd/client/session.hpp"
 #include "robotd/client/subscription.hpp"
 #include "robotd/messages.hpp"

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "robotd/client/options.hpp"
+#include "robotd/client/policy_data_publisher.hpp"
 #include "robotd/client/session.hpp"
 #include "robotd/client/subscription.hpp"
 #include "robotd/messages.hpp"
@@ -55,6 +56,10 @@ class Client {
   Subscription on_imu(std::function<void(const Imu&)> callback);
   /// End-effector poses of devices whose driver computes one (frame_id = device).
   Subscription on_end_pose(std::function<void(const PoseStamped&)> callback);
+  /// robotd's joystick source; `topic` is its config's joystick.topic (ROS name, default "joy").
+  Subscription on_joy(std::function<void(const Joy&)> callback, const std::string& topic = "joy");
+  /// What policies publish on /policy_data.
+  Subscription on_policy_data(std::function<void(const PolicyData&)> callback);
 
   /// The next JointState / DeviceStatus of `device` ("" = any), or a timeout error.
   Result<JointState> next_joint_state(const std::string& device, std::chrono::milliseconds timeout);
@@ -64,6 +69,9 @@ class Client {
 
   /// Publishes a raw ControlCommand (no checks here; robotd checks everything).
   Result<void> publish(const ControlCommand& command);
+  /// A writer for /policy_data. Create it once, before the first sample: DDS discovery of a
+  /// new writer takes a moment, and samples written before a subscriber matched are not delivered.
+  Result<PolicyDataPublisher> policy_data_publisher();
 
  private:
   explicit Client(std::shared_ptr<detail::ClientCore> core);

@@ -25,7 +25,7 @@
 namespace robotd::driver {
 
 /// Bump when anything in this header or types.hpp changes layout or meaning.
-inline constexpr std::uint32_t kAbiVersion = 3;
+inline constexpr std::uint32_t kAbiVersion = 4;
 
 struct JointLimits {
   double position_min_rad = -3.14;
@@ -42,6 +42,9 @@ struct JointDescription {
   JointLimits limits;
   double default_kp = 0;  // used when a command carries no gains
   double default_kd = 0;  // also the damping gain for the DAMPING behaviour
+  /// Where the joint reads right after reset_zero: 0 unless the driver maps motor angles to
+  /// joint angles with an offset (the motor's zero seen through that map).
+  double zero_position_rad = 0;
 };
 
 struct OpDescription {

@@ -39,6 +39,8 @@ class SerialPort {
   Result<void> open();
   void close() noexcept;
   bool is_open() const { return fd_ >= 0; }
+  /// The open line's descriptor (−1 when closed), for a reader thread to poll(); read through read().
+  int fd() const { return fd_; }
 
   /// Non-blocking, RT-safe: one system call, no allocation.
   SerialIo read(std::span<std::uint8_t> out, std::size_t& count) noexcept;

@@ -1,4 +1,5 @@
-// Bounded single-producer / single-consumer ring. Lock-free and allocation-free after
+// Bounded single-producer / single-consumer ring, shared by robotd (its event rings) and drivers
+// (replies handed from the RT thread to ops). Lock-free and allocation-free after
 // construction: the RT thread may be either end. push() fails (returns false) when full rather
 // than overwrite, so a slow consumer costs the newest items, never corrupts old ones.
 #pragma once
@@ -10,7 +11,7 @@
 #include <optional>
 #include <type_traits>
 
-namespace robotd::rt {
+namespace robotd::driver {
 
 template <class T, std::size_t Capacity>
 class SpscRing {
@@ -43,4 +44,4 @@ class SpscRing {
   alignas(kCacheLine) std::array<T, Capacity> slots_{};
 };
 
-}  // namespace robotd::rt
+}  // namespace robotd::driver

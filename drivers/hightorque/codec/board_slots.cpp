@@ -1,0 +1,194 @@
+// The USB-CDC board's payloads (§1.6.3, errata "board units", the SDK's motor.cc and
+// serial_struct.h): one port's int16 command slots in motor-id order, and the state records the
+// board sends back (kMotorState: id, pos, vel, τ; kMotorState2: id, mode, fault, pos, vel, τ).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+
+#include "command_layouts.hpp"
+#include "hightorque_codec.hpp"
+#include "motor_units.hpp"
+#include "wire_scaling.hpp"
+
+namespace robotd::hightorque {
+namespace {
+
+using layouts::Field;
+
+struct SlotForm {
+  BoardCommand command = BoardCommand::kPosition;
+  Mode mode = Mode::kPosition;
+  std::span<const Field> fields;
+};
+
+constexpr std::array<SlotForm, 5> kSlotForms{{
+    {BoardCommand::kPosition, Mode::kPosition, layouts::kPositionFields},
+    {BoardCommand::kVelocity, Mode::kVelocity, layouts::kVelocityFields},
+    {BoardCommand::kTorque, Mode::kTorque, layouts::kTorqueFields},
+    {BoardCommand::kPositionVelocityTorqueMax, Mode::kPositionVelocityTorque, layouts::kPositionVelocityTorqueFields},
+    {BoardCommand::kPositionVelocityTorqueKpKd, Mode::kMit, layouts::kMitFields},
+}};
+
+const SlotForm* slot_form(BoardCommand command) {
+  for (const SlotForm& form : kSlotForms) {
+    if (form.command == command) return &form;
+  }
+  return nullptr;
+}
+
+constexpr std::int16_t kBoardGainLimit = 32700;  // the SDK's int16_limit() on kp / kd
+
+/// Board counts per motor unit: pos 1e-4 rev, vel 2.5e-4 rev/s, τ in the model's LSB (the
+/// MotorScaling factor does it all), gains ×10.
+constexpr double board_counts_per_unit(units::Quantity quantity) {
+  switch (quantity) {
+    case units::Quantity::kPosition:
+      return 1e4;
+    case units::Quantity::kVelocity:
+      return 4e3;
+    case units::Quantity::kGain:
+      return 1e1;
+    default:
+      return 1.0;
+  }
+}
+
+/// A field's board count: truncated toward zero and saturated like the SDK; NaN reads as the
+/// board's "unset" (0x8000 for a position, 0 for the rest).
+std::uint16_t board_raw(Field field, double value, const MotorScaling& scaling) {
+  const units::Quantity quantity = layouts::quantity(field);
+  if (std::isnan(value)) return field == Field::kPosition ? wire::kUnset16 : std::uint16_t{0};
+  const double counts = units::to_motor(quantity, value, scaling) * board_counts_per_unit(quantity);
+  const std::int16_t limit =
+      quantity == units::Quantity::kGain ? kBoardGainLimit : std::numeric_limits<std::int16_t>::max();
+  return static_cast<std::uint16_t>(wire::truncate<std::int16_t>(counts, limit));
+}
+
+double board_value(Field field, std::uint16_t raw, const MotorScaling& scaling) {
+  if (field == Field::kPosition && raw == wire::kUnset16) return std::numeric_limits<double>::quiet_NaN();
+  const units::Quantity quantity = layouts::quantity(field);
+  return units::from_motor(quantity, static_cast<std::int16_t>(raw) / board_counts_per_unit(quantity), scaling);
+}
+
+bool has_scaling(int motor, std::span<const MotorScaling> scaling_by_motor_id) {
+  return motor >= kMinMotorId && static_cast<std::size_t>(motor) < scaling_by_motor_id.size();
+}
+
+/// The record size of a state command; 0 if `command` is not one.
+std::size_t state_record_size(BoardCommand command) {
+  if (command == BoardCommand::kMotorState) return kBoardShortStateRecordSize;
+  if (command == BoardCommand::kMotorState2) return kBoardStateRecordSize;
+  return 0;
+}
+
+}  // namespace
+
+std::size_t encode_board_slots(BoardCommand command, std::span<const BlockSlot> slots,
+                               std::span<const MotorScaling> scaling_by_motor_id,
+                               std::span<std::uint8_t> out) noexcept {
+  const SlotForm* form = slot_form(command);
+  if (form == nullptr) return 0;
+  std::size_t highest = 0;
+  for (const BlockSlot& slot : slots) {
+    if (!has_scaling(slot.motor, scaling_by_motor_id)) return 0;
+    highest = std::max(highest, static_cast<std::size_t>(slot.motor));
+  }
+  const std::size_t slot_bytes = 2 * form->fields.size();
+  const std::size_t size = highest * slot_bytes;
+  if (size > out.size() || size > kMaxBoardPayload) return 0;
+
+  // A mode change resets every slot on the board: position unset, the rest 0.
+  for (std::size_t at = 0; at < size; at += 2) {
+    const bool position = form->fields[(at % slot_bytes) / 2] == Field::kPosition;
+    wire::put_u16(out, at, position ? wire::kUnset16 : std::uint16_t{0});
+  }
+  for (const BlockSlot& slot : slots) {
+    const MotorScaling& scaling = scaling_by_motor_id[static_cast<std::size_t>(slot.motor)];
+    std::size_t at = static_cast<std::size_t>(slot.motor - 1) * slot_bytes;
+    for (const Field field : form->fields) {
+      wire::put_u16(out, at, board_raw(field, layouts::value(slot.command, field), scaling));
+      at += 2;
+    }
+  }
+  return size;
+}
+
+std::size_t decode_board_slots(BoardCommand command, std::span<const std::uint8_t> payload,
+                               std::span<const MotorScaling> scaling_by_motor_id,
+                               std::span<MotorRequest> out) noexcept {
+  const SlotForm* form = slot_form(command);
+  if (form == nullptr) return 0;
+  const std::size_t slot_bytes = 2 * form->fields.size();
+  std::size_t written = 0;
+  for (std::size_t slot = 0; (slot + 1) * slot_bytes <= payload.size() && written < out.size(); ++slot) {
+    const int motor = static_cast<int>(slot) + 1;
+    if (!has_scaling(motor, scaling_by_motor_id)) continue;
+    const MotorScaling& scaling = scaling_by_motor_id[slot + 1];
+    MotorRequest& request = out[written++];
+    request = MotorRequest{};
+    request.motor = motor;
+    request.command.mode = form->mode;
+    std::size_t at = slot * slot_bytes;
+    for (const Field field : form->fields) {
+      layouts::assign(request, field, board_value(field, wire::get_u16(payload, at), scaling));
+      at += 2;
+    }
+  }
+  return written;
+}
+
+std::size_t decode_board_states(BoardCommand command, std::span<const std::uint8_t> payload,
+                                std::span<const MotorScaling> scaling_by_motor_id,
+                                std::span<BoardMotorState> out) noexcept {
+  const std::size_t record_size = state_record_size(command);
+  if (record_size == 0) return 0;
+  std::size_t written = 0;
+  for (std::size_t at = 0; at + record_size <= payload.size() && written < out.size(); at += record_size) {
+    const auto record = payload.subspan(at, record_size);
+    const int motor = record[0];
+    if (!has_scaling(motor, scaling_by_motor_id)) continue;
+    const MotorScaling& scaling = scaling_by_motor_id[record[0]];
+    BoardMotorState& state = out[written++];
+    state = BoardMotorState{};
+    state.motor = motor;
+    std::size_t field_at = 1;
+    if (record_size == kBoardStateRecordSize) {
+      state.mode = record[1];
+      state.fault = record[2];
+      field_at = 3;
+    }
+    state.position_rad = board_value(Field::kPosition, wire::get_u16(record, field_at), scaling);
+    state.velocity_rad_s = board_value(Field::kVelocity, wire::get_u16(record, field_at + 2), scaling);
+    state.torque_nm = board_value(Field::kTorque, wire::get_u16(record, field_at + 4), scaling);
+  }
+  return written;
+}
+
+std::size_t encode_board_states(BoardCommand command, std::span<const BoardMotorState> states,
+                                std::span<const MotorScaling> scaling_by_motor_id,
+                                std::span<std::uint8_t> out) noexcept {
+  const std::size_t record_size = state_record_size(command);
+  const std::size_t size = states.size() * record_size;
+  if (record_size == 0 || size > out.size() || size > kMaxBoardPayload) return 0;
+  std::size_t at = 0;
+  for (const BoardMotorState& state : states) {
+    if (!has_scaling(state.motor, scaling_by_motor_id)) return 0;
+    const MotorScaling& scaling = scaling_by_motor_id[static_cast<std::size_t>(state.motor)];
+    out[at++] = static_cast<std::uint8_t>(state.motor);
+    if (record_size == kBoardStateRecordSize) {
+      out[at++] = state.mode;
+      out[at++] = state.fault;
+    }
+    wire::put_u16(out, at, board_raw(Field::kPosition, state.position_rad, scaling));
+    wire::put_u16(out, at + 2, board_raw(Field::kVelocity, state.velocity_rad_s, scaling));
+    wire::put_u16(out, at + 4, board_raw(Field::kTorque, state.torque_nm, scaling));
+    at += 6;
+  }
+  return size;
+}
+
+}  // namespace robotd::hightorque

@@ -1,0 +1,345 @@
+// HighTorque motors (../shared/protocols/hightorque_and_ros2.md §1.6 and its errata) as plain
+// values: the current CAN-FD protocol (29-bit identifiers, single-motor mode frames, one-to-many
+// block frames, system commands, replies and fault codes) and the livelybot USB-CDC "CAN board"
+// framing (0xF7 header, CRC-8 / CRC-16) with its per-port slot payloads.
+//
+// Units at this surface are robotd's: rad, rad/s, rad/s², N·m, and gains in N·m/rad and
+// N·m·s/rad. Revolutions, the int16/int32 scalings, the board's per-model torque factors and the
+// gain conversion exist only inside this codec, driven by MotorScaling (from config).
+// Float → integer conversion truncates toward zero like the vendor's C code and saturates
+// (never wraps) at ±32767 / ±2147483647, so that no finite value becomes the "no value"
+// sentinel; NaN encodes as that sentinel (0x8000 / 0x80000000 / NaN) and decodes back as NaN.
+//
+// Everything on the motor's hot path (encode_* into CanMessage or a caller's byte span,
+// decode_reply, BoardFrameSplitter) is noexcept and allocation-free: robotd's RT thread calls it.
+// Little-endian everywhere on the wire.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "robotd/transport/can_message.hpp"
+
+namespace robotd::hightorque {
+
+inline constexpr int kMinMotorId = 1;
+inline constexpr int kMaxMotorId = 126;
+inline constexpr int kBroadcastId = 127;
+inline constexpr int kMaxBlockMotorId = 30;  // one-to-many block frames address motors 1…30
+
+// ---- Scaling -------------------------------------------------------------------------------
+
+/// Numeric width of a frame's parameters: the "type" field of a CAN-FD identifier.
+enum class Width : std::uint8_t { kInt16 = 1, kInt32 = 2, kFloat = 3 };
+
+/// Per-motor-model conversion between robotd's units and the motor's (config "motor_models").
+struct MotorScaling {
+  /// N·m per motor torque unit. 1.0 on CAN-FD firmware (which speaks N·m ×100 / ×1000 / float);
+  /// on the USB board the model's LSB factor (e.g. 0.004938 for the 5047_36).
+  double torque_per_unit = 1.0;
+  double torque_offset_nm = 0.0;  // board: raw = (τ − offset) / torque_per_unit
+  /// Motor gain = robotd gain × 2π / gain_factor (N·m/rad → the motor's per-revolution gain);
+  /// the board then multiplies by 10 and saturates at ±32700. The spec leaves the physical
+  /// unit of the new firmware's gains open (§1.6.1), hence configurable.
+  double gain_factor = 1.0;
+};
+
+// ---- CAN-FD protocol: identifiers ----------------------------------------------------------
+
+/// Command to one motor: (width << 16) | 0x8000 | motor. Block frames put the block code
+/// (0x80…0x9C) where the motor id goes, always with Width::kInt16.
+std::uint32_t command_id(Width width, int motor_or_block) noexcept;
+/// Reply from a motor: (width << 16) | (motor << 8), bit 15 clear.
+std::uint32_t reply_id(Width width, int motor) noexcept;
+
+// ---- CAN-FD protocol: commands robotd sends ------------------------------------------------
+
+enum class Mode : std::uint8_t {
+  kStop = 0x01,     // phases open: free-wheel
+  kBrake = 0x18,    // phases shorted
+  kVoltage = 0x19,  // d = 0, q
+  kCurrent = 0x1A,  // d = 0, q
+  kTorque = 0x1B,
+  kVelocity = 0x1C,
+  kPosition = 0x1D,
+  kVelocityAcceleration = 0x1E,
+  kPositionVelocityTorque = 0x1F,        // p, v_max, τ_max
+  kPositionVelocityAcceleration = 0x20,  // trapezoid: p, v_max, a
+  kMit = 0x21,                           // p, v, τ_ff, kp, kd
+};
+
+/// The reply the motor sends back (byte 1 of a command, echoed in byte 0 of the reply).
+enum class Query : std::uint8_t {
+  kNone = 0x00,              // no reply
+  kCounter = 0x0A,           // mode, fault, command counter
+  kState = 0x0B,             // mode, fault, position, velocity, torque
+  kStateTemperature = 0x0C,  // mode, fault, temperature, position, velocity, torque
+  kCompact = 0x0E,           // fault, position, velocity, torque (fits 8 bytes)
+};
+
+/// One motor's command in robotd's units. Fields a mode does not use are ignored.
+struct MotorCommand {
+  Mode mode = Mode::kStop;
+  double position_rad = 0;
+  double velocity_rad_s = 0;  // MIT: v_des; kPositionVelocity*: v_max; kVelocity*: target
+  double acceleration_rad_s2 = 0;
+  double torque_nm = 0;  // MIT: τ_ff; kPositionVelocityTorque: τ_max; kTorque: target
+  double kp = 0;         // N·m/rad
+  double kd = 0;         // N·m·s/rad
+  double voltage_q_v = 0;
+  double current_q_a = 0;
+};
+
+/// A single-motor command frame (CAN-FD, extended id, BRS), padded to a valid FD length.
+transport::CanMessage encode_command(int motor, const MotorCommand& command, Width width, Query query,
+                                     const MotorScaling& scaling) noexcept;
+
+/// One motor's slot in a one-to-many block frame.
+struct BlockSlot {
+  int motor = 0;  // 1…126
+  MotorCommand command;
+};
+
+/// Block frames for a whole bus in as few frames as the protocol allows (int16 only; motors
+/// 1…kMaxBlockMotorId): MIT slots go in 0x98…0x9C frames (6 motors per frame, 10 bytes each,
+/// motors 1–6 in 0x98, 7–12 in 0x99, …), kPositionVelocityTorque in 0x92…0x94 and
+/// kPositionVelocityAcceleration in 0x95…0x97 (10 per frame), kVelocityAcceleration in
+/// 0x90…0x91 (15 per frame), kStop / kBrake in 0x85 / 0x86 (1 byte per motor), position /
+/// velocity / torque / voltage q / current q in 0x80…0x84 (30 per frame). A frame carries slots
+/// up to its highest commanded motor; frames with no commanded motor are not sent.
+/// Every slot must have the same mode (the mode of slots[0]); slots need not be sorted; unset
+/// 2-byte fields are 0x8000, unset 1-byte slots 0, and the padding reads as unset slots. The
+/// query code is the padded frame's last byte. `scaling_by_motor_id` is indexed by motor id
+/// (element 0 unused): one frame may carry motors of different models. Returns the number of
+/// frames written to `out`, or 0 if there are no slots, they do not fit `out`, mix modes, name a
+/// motor outside 1…30 or without scaling, or use a mode that has no block form.
+std::size_t encode_block(std::span<const BlockSlot> slots, Query query,
+                         std::span<const MotorScaling> scaling_by_motor_id,
+                         std::span<transport::CanMessage> out) noexcept;
+
+/// System commands (int16 id to one motor).
+transport::CanMessage encode_soft_reboot(int motor) noexcept;            // 03 03 01
+transport::CanMessage encode_save_to_flash(int motor) noexcept;          // 03 03 02
+transport::CanMessage encode_set_zero(int motor) noexcept;               // 03 03 03
+transport::CanMessage encode_change_id(int motor, int new_id) noexcept;  // 03 03 04 <id>
+/// 05 <ms LE16>: the motor brakes by itself when no command arrives for `timeout_ms`; 0 disarms.
+transport::CanMessage encode_command_timeout(int motor, std::uint16_t timeout_ms) noexcept;
+/// 03 00 05 <query> <µs LE32>: periodic status push; 0 stops; the motor refuses < 100 µs.
+transport::CanMessage encode_status_push(int motor, Query query, std::uint32_t period_us) noexcept;
+enum class InfoKind : std::uint8_t { kFirmwareVersion = 0x04, kHardwareVersion = 0x05, kModel = 0x07 };
+transport::CanMessage encode_info_request(int motor, InfoKind kind) noexcept;  // 00 04 / 00 05 / 00 07
+/// A query with no mode change (the motor keeps doing what it was told).
+transport::CanMessage encode_query(int motor, Query query, Width width) noexcept;
+
+// ---- CAN-FD protocol: replies robotd reads -------------------------------------------------
+
+struct MotorState {
+  int motor = 0;
+  Query query = Query::kNone;
+  std::uint8_t mode = 0;   // the motor's current Mode code (not in kCompact replies: 0)
+  std::uint8_t fault = 0;  // fault code, fault_text()
+  double position_rad = 0;
+  double velocity_rad_s = 0;
+  double torque_nm = 0;
+  std::optional<double> temperature_c;  // kStateTemperature only
+  /// kCounter only. Its field has the frame's width (assumption: the vendor documents int16
+  /// only); int32 counters are kept modulo 2^16, float ones saturated into 0…65535.
+  std::optional<std::uint16_t> counter;
+};
+struct FirmwareVersion {
+  int motor = 0;
+  int major = 0;
+  int minor = 0;
+  int patch = 0;
+};
+struct ModelName {
+  int motor = 0;
+  std::array<char, 60> text{};
+};  // NUL-terminated ASCII, ≤ 59 chars
+struct CommandResult {
+  int motor = 0;
+  bool success = false;
+  std::uint8_t code = 0;
+};  // 0x03 reply
+
+struct Reply {
+  enum class Kind : std::uint8_t { kState, kFirmwareVersion, kHardwareVersion, kModel, kResult };
+  Kind kind = Kind::kState;
+  MotorState state;
+  FirmwareVersion version;  // kFirmwareVersion and kHardwareVersion
+  ModelName model;
+  CommandResult result;
+};
+
+/// Decodes one reply frame. nullopt for anything that is not a well-formed reply from a motor
+/// 1…max_motor_id: bit 15 set (a command), type 00, motor 0, DLC 0, truncated or unknown
+/// payloads. Never reads past message.length.
+std::optional<Reply> decode_reply(const transport::CanMessage& message, int max_motor_id,
+                                  const MotorScaling& scaling) noexcept;
+
+// ---- CAN-FD protocol: the motor's side (for the simulator) ---------------------------------
+
+/// What a command frame asks of one motor.
+struct MotorRequest {
+  enum class Kind : std::uint8_t {
+    kCommand,  // a mode command (single or from a block): `command`, `query`
+    kQuery,    // a query without a mode change
+    kSoftReboot,
+    kSaveToFlash,
+    kSetZero,
+    kChangeId,        // `new_id`
+    kCommandTimeout,  // `timeout_ms`
+    kStatusPush,      // `query`, `period_us`
+    kInfo,            // `info`
+  };
+  Kind kind = Kind::kCommand;
+  int motor = 0;
+  MotorCommand command;
+  /// Which fields of `command` the frame carried (a block slot of 0x8000 leaves a field unset;
+  /// the motor keeps its previous value for it).
+  bool has_position = false, has_velocity = false, has_torque = false, has_kp = false, has_kd = false;
+  Query query = Query::kNone;
+  Width width = Width::kInt16;
+  int new_id = 0;
+  std::uint16_t timeout_ms = 0;
+  std::uint32_t period_us = 0;
+  InfoKind info = InfoKind::kFirmwareVersion;
+};
+
+/// Decodes a command frame into per-motor requests (a block frame yields one per motor slot it
+/// sets, in id order; reboot / rezero blocks 0x87 / 0x88 yield kSoftReboot / kSetZero). Returns
+/// how many were written to `out` (0 for anything that is not a well-formed command: reply ids,
+/// unknown modes or query codes, truncated payloads; stops when `out` is full).
+std::size_t decode_request(const transport::CanMessage& message, const MotorScaling& scaling,
+                           std::span<MotorRequest> out) noexcept;
+
+/// A motor's reply frame, as the motor would send it for `state.query` at `width` (length 0 for
+/// Query::kNone: the motor sends nothing).
+transport::CanMessage encode_reply(const MotorState& state, Width width, const MotorScaling& scaling) noexcept;
+transport::CanMessage encode_firmware_version(const FirmwareVersion& version, InfoKind kind) noexcept;
+transport::CanMessage encode_model_name(int motor, std::string_view name) noexcept;
+transport::CanMessage encode_command_result(int motor, std::uint8_t code) noexcept;
+
+// ---- Fault and mode texts ------------------------------------------------------------------
+
+/// "communication timeout" for 0x15, "ok" for 0, "unknown fault 0x42" style text otherwise
+/// (static storage: safe on the RT thread).
+const char* fault_text(std::uint8_t fault) noexcept;
+/// "mit", "stop", "brake", … ; "unknown" for codes outside Mode.
+const char* mode_text(std::uint8_t mode) noexcept;
+
+// ---- USB-CDC CAN board (livelybot) ---------------------------------------------------------
+
+inline constexpr std::uint8_t kBoardHeader = 0xF7;
+inline constexpr std::size_t kBoardHeaderSize = 7;  // F7, cmd, len LE16, crc8, crc16 LE16
+inline constexpr std::size_t kMaxBoardPayload = 1024;
+
+/// CRC-8/MAXIM table with initial value 0xFF (check over "123456789": 0x0B).
+std::uint8_t board_crc8(std::span<const std::uint8_t> bytes) noexcept;
+/// CRC-16/MCRF4XX: reflected 0x8408, init 0xFFFF, no final XOR (check value 0x6F91).
+std::uint16_t board_crc16(std::span<const std::uint8_t> bytes) noexcept;
+
+/// Board command / admin codes (§1.6.3). The SDK sends admin commands and state requests with a
+/// 1-byte payload: a motor id, or 0x7F for every motor; the board answers a state request in kind.
+enum class BoardCommand : std::uint8_t {
+  kResetZero = 0x01,
+  kSave = 0x02,
+  kStop = 0x03,
+  kBrake = 0x04,
+  kSetMotorCount = 0x05,
+  kMotorState = 0x06,  // board → host: every motor's record without mode / fault (7 bytes)
+  kReloadConfig = 0x07,
+  kReboot = 0x08,
+  kMotorState2 = 0x0A,  // board → host: every motor's state2 record (9 bytes)
+  kVersion = 0x0B,
+  kPosition = 0x80,
+  kVelocity = 0x81,
+  kTorque = 0x82,
+  kTimeout = 0x85,
+  kPositionVelocityTorqueMax = 0x90,
+  kPositionVelocityTorqueKpKd = 0xB0,  // "v2" MIT-like: pos, vel, τ, kp, kd per motor
+};
+
+/// Writes one framed packet into `out`; returns its size, or 0 if it does not fit or the
+/// payload exceeds kMaxBoardPayload.
+std::size_t encode_board_frame(BoardCommand command, std::span<const std::uint8_t> payload,
+                               std::span<std::uint8_t> out) noexcept;
+
+/// One port's slots: motor ids 1…highest, each `slot` int16 values wide, in id order; ids not
+/// in `slots` get position 0x8000 and 0 elsewhere (NaN fields likewise). For
+/// kPositionVelocityTorqueKpKd (5 values), kPositionVelocityTorqueMax (3 values) and kPosition /
+/// kVelocity / kTorque (1 value); board units from MotorScaling (pos 1e-4 rev, vel 2.5e-4 rev/s,
+/// τ via torque_per_unit/offset, gains ×10 after the gain conversion, saturated at ±32700).
+/// `scaling_by_motor_id` is indexed by motor id (element 0 unused). Returns the
+/// payload size, 0 if it does not fit, the command has no slot form, or a slot names motor 0 or
+/// a motor without scaling.
+std::size_t encode_board_slots(BoardCommand command, std::span<const BlockSlot> slots,
+                               std::span<const MotorScaling> scaling_by_motor_id, std::span<std::uint8_t> out) noexcept;
+
+/// A motor's state record in a kMotorState2 packet: id, mode, fault, pos, vel, τ (int16);
+/// kMotorState records lack mode and fault.
+struct BoardMotorState {
+  int motor = 0;
+  std::uint8_t mode = 0;
+  std::uint8_t fault = 0;
+  double position_rad = 0;
+  double velocity_rad_s = 0;
+  double torque_nm = 0;
+};
+inline constexpr std::size_t kBoardStateRecordSize = 9;       // kMotorState2: id, mode, fault + 3 × int16
+inline constexpr std::size_t kBoardShortStateRecordSize = 7;  // kMotorState: id + 3 × int16
+/// Decodes the records of a kMotorState or kMotorState2 payload into `out` (mode and fault 0
+/// for kMotorState); returns how many. Stops at a truncated record or when `out` is full; skips
+/// records of motor 0 or of a motor without scaling; 0 for any other command.
+std::size_t decode_board_states(BoardCommand command, std::span<const std::uint8_t> payload,
+                                std::span<const MotorScaling> scaling_by_motor_id,
+                                std::span<BoardMotorState> out) noexcept;
+/// The board's side, for the simulator: the payload size, or 0 if it does not fit `out`, the
+/// command is not a state command, or a state names a motor without scaling.
+std::size_t encode_board_states(BoardCommand command, std::span<const BoardMotorState> states,
+                                std::span<const MotorScaling> scaling_by_motor_id,
+                                std::span<std::uint8_t> out) noexcept;
+/// The board's side: slots back into per-motor commands, one per slot in id order (kind
+/// kCommand, width kInt16, query kNone; a 0x8000 position leaves has_position false, the other
+/// fields are always set since the board sends 0 for them). Returns how many were written.
+std::size_t decode_board_slots(BoardCommand command, std::span<const std::uint8_t> payload,
+                               std::span<const MotorScaling> scaling_by_motor_id, std::span<MotorRequest> out) noexcept;
+
+struct BoardFrame {
+  BoardCommand command{};
+  std::uint16_t length = 0;
+  std::array<std::uint8_t, kMaxBoardPayload> payload{};
+  std::span<const std::uint8_t> bytes() const { return {payload.data(), length}; }
+};
+
+/// Reassembles board packets from a byte stream (a USB-CDC tty). Skips bytes until a header,
+/// drops a packet whose CRC-8 or CRC-16 fails (counted; a stray 0xF7 in garbage can count too)
+/// or whose length exceeds kMaxBoardPayload, re-scans the dropped bytes for the next header, and
+/// never allocates. Every byte ends up either in a packet or in skipped_bytes().
+class BoardFrameSplitter {
+ public:
+  /// Consumes up to all of `bytes`; returns how many were consumed. It stops after a whole
+  /// packet (and consumes nothing while one waits): take it with next(), then feed the rest.
+  std::size_t feed(std::span<const std::uint8_t> bytes) noexcept;
+  bool next(BoardFrame& out) noexcept;
+  std::uint64_t crc_errors() const noexcept { return crc_errors_; }
+  std::uint64_t skipped_bytes() const noexcept { return skipped_bytes_; }
+
+ private:
+  std::size_t wanted() const noexcept;       // bytes still missing from the packet being read
+  void settle() noexcept;                    // checks what is buffered; may complete a packet
+  void discard(std::size_t count) noexcept;  // drops `count` bytes, then up to the next header
+
+  std::array<std::uint8_t, kBoardHeaderSize + kMaxBoardPayload> buffer_{};
+  std::size_t filled_ = 0;
+  bool ready_ = false;
+  BoardFrame frame_{};
+  std::uint64_t crc_errors_ = 0;
+  std::uint64_t skipped_bytes_ = 0;
+};
+
+}  // namespace robotd::hightorque

@@ -1,0 +1,157 @@
+// A bus of motors behind the livelybot USB-CDC CAN board: one tty is one CAN port. Each tick is
+// one 0xB0 slot packet (position, velocity, torque, kp, kd per motor id); the board answers with
+// a motor-state packet. Port-wide admin packets stand in for the per-motor system commands the
+// board does not have (docs/drivers/hightorque.md says which).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "driver/motor_bus_factory.hpp"
+
+namespace robotd::hightorque {
+namespace {
+
+constexpr std::size_t kMaxPacket = kBoardHeaderSize + kMaxBoardPayload;
+constexpr int kMaxReadsPerReceive = 64;
+
+class BoardBus final : public MotorBus {
+ public:
+  BoardBus(const transport::SerialConfig& config, const ScalingById& scaling, int highest_id)
+      : port_(config), scaling_(scaling), highest_id_(highest_id) {}
+
+  Result<void> open() override {
+    auto opened = port_.open();
+    if (opened) port_.flush();
+    splitter_ = BoardFrameSplitter{};
+    return opened;
+  }
+  void close() noexcept override { port_.close(); }
+  std::string describe() const override { return "board " + port_.describe(); }
+
+  BusIo send_commands(std::span<const BlockSlot> commanded, std::span<const int> /*idle*/,
+                      Query /*query*/) noexcept override {
+    // Motors without a command keep an unset slot (the board leaves them as they are); with no
+    // command at all, a state request keeps the feedback coming.
+    if (commanded.empty()) return send_admin(BoardCommand::kMotorState2);
+    std::array<std::uint8_t, kMaxBoardPayload> payload{};
+    const std::size_t size =
+        encode_board_slots(BoardCommand::kPositionVelocityTorqueKpKd, commanded, scaling_, payload);
+    if (size == 0) {
+      ++frames_dropped_;
+      return BusIo::kBusy;
+    }
+    return send_packet(BoardCommand::kPositionVelocityTorqueKpKd, std::span(payload).first(size));
+  }
+
+  BusIo send_brake(std::span<const int> /*motors*/, Query /*query*/) noexcept override {
+    return send_admin(BoardCommand::kBrake);
+  }
+
+  BusIo send_system(const SystemRequest& request) noexcept override {
+    switch (request.kind) {
+      case SystemRequest::Kind::kQuery:
+        return send_admin(BoardCommand::kMotorState2);
+      case SystemRequest::Kind::kStop:
+        return send_admin(BoardCommand::kStop);
+      case SystemRequest::Kind::kSetZero:
+        return send_admin(BoardCommand::kResetZero);
+      case SystemRequest::Kind::kSaveToFlash:
+        return send_admin(BoardCommand::kSave);
+      case SystemRequest::Kind::kSoftReboot:
+        return send_admin(BoardCommand::kReboot);
+      case SystemRequest::Kind::kCommandTimeout: {
+        // 0x85 is a slot command: every motor of the port gets the timeout (LE16 ms).
+        std::array<std::uint8_t, 2 * (kMaxMotorId + 1)> payload{};
+        const auto ms = static_cast<std::uint16_t>(request.value);
+        for (int id = 1; id <= highest_id_; ++id) {
+          payload[static_cast<std::size_t>(2 * (id - 1))] = static_cast<std::uint8_t>(ms & 0xFF);
+          payload[static_cast<std::size_t>(2 * (id - 1) + 1)] = static_cast<std::uint8_t>(ms >> 8);
+        }
+        return send_packet(BoardCommand::kTimeout, std::span(payload).first(static_cast<std::size_t>(2 * highest_id_)));
+      }
+      case SystemRequest::Kind::kInfo:
+        return send_admin(BoardCommand::kVersion);
+    }
+    return BusIo::kBusy;
+  }
+
+  BusIo receive(ReplySink& sink) noexcept override {
+    std::array<std::uint8_t, 4096> bytes{};
+    for (int i = 0; i < kMaxReadsPerReceive; ++i) {
+      std::size_t count = 0;
+      const transport::SerialIo io = port_.read(bytes, count);
+      if (io == transport::SerialIo::kClosed) return BusIo::kClosed;
+      if (io == transport::SerialIo::kNone) return BusIo::kOk;
+      std::span<const std::uint8_t> rest(bytes.data(), count);
+      while (!rest.empty()) {
+        rest = rest.subspan(splitter_.feed(rest));
+        BoardFrame frame;
+        while (splitter_.next(frame)) deliver(frame, sink);
+      }
+    }
+    return BusIo::kOk;
+  }
+
+ private:
+  void deliver(const BoardFrame& frame, ReplySink& sink) noexcept {
+    ++frames_received_;
+    std::array<BoardMotorState, kMaxMotorId> states{};
+    const std::size_t count = decode_board_states(frame.command, frame.bytes(), scaling_, states);
+    for (std::size_t i = 0; i < count; ++i) {
+      Reply reply;
+      reply.kind = Reply::Kind::kState;
+      reply.state.motor = states[i].motor;
+      reply.state.query = Query::kState;
+      reply.state.mode = states[i].mode;
+      reply.state.fault = states[i].fault;
+      reply.state.position_rad = states[i].position_rad;
+      reply.state.velocity_rad_s = states[i].velocity_rad_s;
+      reply.state.torque_nm = states[i].torque_nm;
+      sink.on_reply(reply);
+    }
+  }
+
+  /// Admin commands and state requests name their motor in one byte; 0x7F is every motor.
+  BusIo send_admin(BoardCommand command) noexcept {
+    const std::array<std::uint8_t, 1> all{static_cast<std::uint8_t>(kBroadcastId)};
+    return send_packet(command, all);
+  }
+
+  BusIo send_packet(BoardCommand command, std::span<const std::uint8_t> payload) noexcept {
+    std::array<std::uint8_t, kMaxPacket> packet{};
+    const std::size_t size = encode_board_frame(command, payload, packet);
+    std::size_t written = 0;
+    switch (port_.write(std::span(packet).first(size), written)) {
+      case transport::SerialIo::kClosed:
+        return BusIo::kClosed;
+      case transport::SerialIo::kNone:
+        ++frames_dropped_;
+        return BusIo::kBusy;
+      case transport::SerialIo::kDone:
+        break;
+    }
+    if (written < size) {  // the board drops the torn packet on its CRC
+      ++frames_dropped_;
+      return BusIo::kBusy;
+    }
+    ++frames_sent_;
+    return BusIo::kOk;
+  }
+
+  transport::SerialPort port_;
+  ScalingById scaling_;
+  int highest_id_;
+  BoardFrameSplitter splitter_;
+};
+
+}  // namespace
+
+std::unique_ptr<MotorBus> make_board_bus(const transport::SerialConfig& config, const ScalingById& scaling,
+                                         int highest_id) {
+  return std::make_unique<BoardBus>(config, scaling, highest_id);
+}
+
+}  // namespace robotd::hightorque

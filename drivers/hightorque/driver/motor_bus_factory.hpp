@@ -1,0 +1,25 @@
+// The two kinds of MotorBus and what they share. Internal to the driver.
+#pragma once
+
+#include <array>
+#include <memory>
+
+#include "driver/motor_bus.hpp"
+#include "robotd/transport/can_transport.hpp"
+#include "robotd/transport/serial_port.hpp"
+
+namespace robotd::hightorque {
+
+/// Each motor's scaling, indexed by its CAN id (0 and 127 unused).
+using ScalingById = std::array<MotorScaling, kBroadcastId + 1>;
+
+/// The CAN-FD frame for a system request.
+transport::CanMessage system_frame(const SystemRequest& request, Width width, const MotorScaling& scaling) noexcept;
+
+std::unique_ptr<MotorBus> make_can_fd_bus(const transport::CanLinkConfig& config, const ScalingById& scaling,
+                                          Width width);
+/// `highest_id`: the highest motor id on the port (slot payloads run from id 1 to it).
+std::unique_ptr<MotorBus> make_board_bus(const transport::SerialConfig& config, const ScalingById& scaling,
+                                         int highest_id);
+
+}  // namespace robotd::hightorque

@@ -1,0 +1,125 @@
+// reset_zero as on the PI Plus: with the loop paused and no session, the motors go to zero
+// torque, take their present angle as zero (written to flash), and zeroing succeeded when every
+// one reads within 0.1 rad of it. The USB board zeroes a whole port at once, so there a port is
+// zeroed whole or not at all.
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "driver/hightorque_driver.hpp"
+#include "robotd/driver/monotonic_clock.hpp"
+
+namespace robotd::hightorque {
+namespace {
+
+constexpr double kZeroTolerance_rad = 0.1;
+
+}  // namespace
+
+Result<void> HighTorqueDriver::check_zeroable(std::span<const int> joints) const {
+  for (const int joint : joints) {
+    if (joint < 0 || static_cast<std::size_t>(joint) >= params_.motors.size()) {
+      return make_error(ErrorCode::kInvalidArgument, "reset_zero: motor " + std::to_string(joint) +
+                                                         " does not exist (0.." +
+                                                         std::to_string(params_.motors.size() - 1) + ")");
+    }
+  }
+  for (std::size_t b = 0; b < params_.buses.size(); ++b) {
+    if (params_.buses[b].kind != BusParams::Kind::kBoard) continue;
+    std::size_t named = 0;
+    for (const int joint : joints) named += params_.motors[static_cast<std::size_t>(joint)].bus == b ? 1U : 0U;
+    if (named != 0 && named != motors_on_bus_[b].size()) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        "reset_zero: bus '" + params_.buses[b].name +
+                            "' is a USB CAN board, which zeroes all its motors at once; name all " +
+                            std::to_string(motors_on_bus_[b].size()) + " of them or none");
+    }
+  }
+  return {};
+}
+
+Result<void> HighTorqueDriver::reset_zero(std::span<const int> joints) {
+  if (!connected_.load(std::memory_order_acquire)) {
+    return make_error(ErrorCode::kNotAvailable, "reset_zero: the motors are not connected");
+  }
+  if (auto checked = check_zeroable(joints); !checked) return checked;
+  const std::lock_guard lock(ops_mutex_);
+  std::vector<std::size_t> motors;
+  for (const int joint : joints) motors.push_back(static_cast<std::size_t>(joint));
+  if (motors.empty()) {
+    for (std::size_t m = 0; m < params_.motors.size(); ++m) motors.push_back(m);
+  }
+
+  // Zero torque, long enough for the robot to settle on its support, keeping the watchdog fed.
+  const auto settled = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.zero_settle_ms);
+  do {
+    send_to_motors(motors, SystemRequest::Kind::kStop);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    drain_buses();
+  } while (std::chrono::steady_clock::now() < settled);
+
+  while (replies_.pop()) {
+  }
+  send_to_motors(motors, SystemRequest::Kind::kSetZero);
+  if (auto done = await_results(motors, "set zero"); !done) return done;
+  if (params_.zero_save_to_flash) {
+    send_to_motors(motors, SystemRequest::Kind::kSaveToFlash);
+    if (auto done = await_results(motors, "save to flash"); !done) return done;
+  }
+
+  auto answered = await_motor_states(motors, std::chrono::milliseconds(params_.reply_timeout_ms), "after zeroing");
+  if (!answered) return answered;
+  std::string off;
+  for (const std::size_t m : motors) {
+    const MotorParams& motor = params_.motors[m];
+    const double motor_rad = (motors_[m].status.position_rad - motor.zero_offset_rad) * motor.direction;
+    if (std::fabs(motor_rad) > kZeroTolerance_rad) off += " " + motor.name + "=" + std::to_string(motor_rad);
+  }
+  if (!off.empty()) {
+    return make_error(ErrorCode::kRefused, "reset_zero: motors not within 0.1 rad of their new zero:" + off);
+  }
+  return {};
+}
+
+Result<void> HighTorqueDriver::await_results(std::span<const std::size_t> motors, const char* what) {
+  // The board acknowledges nothing per motor: a port's admin packet is trusted, and the
+  // position check afterwards is what counts.
+  std::vector<bool> pending(params_.motors.size(), false);
+  std::size_t waiting = 0;
+  for (const std::size_t m : motors) {
+    if (params_.buses[params_.motors[m].bus].kind == BusParams::Kind::kCanFd) {
+      pending[m] = true;
+      ++waiting;
+    }
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  while (waiting > 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    drain_buses();
+    while (const auto reply = replies_.pop()) {
+      if (reply->reply.kind != Reply::Kind::kResult) continue;
+      for (const std::size_t m : motors) {
+        if (!pending[m] || !from_motor(*reply, m)) continue;
+        if (!reply->reply.result.success) {
+          return make_error(ErrorCode::kRefused, "reset_zero: motor " + params_.motors[m].name + " refused " + what +
+                                                     " (result " + std::to_string(reply->reply.result.code) + ")");
+        }
+        pending[m] = false;
+        --waiting;
+      }
+    }
+  }
+  std::string missing;
+  for (const std::size_t m : motors) {
+    if (pending[m]) missing += " " + params_.motors[m].name;
+  }
+  if (!missing.empty()) {
+    return make_error(ErrorCode::kTimeout, std::string("reset_zero: no answer to ") + what + " within " +
+                                               std::to_string(params_.reply_timeout_ms) + " ms from" + missing);
+  }
+  return {};
+}
+
+}  // namespace robotd::hightorque

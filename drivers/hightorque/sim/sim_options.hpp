@@ -1,0 +1,48 @@
+// What the command line sets (main.cpp), checked: the buses with their motors, the motors'
+// physics and identity, and the control channel.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "codec/hightorque_codec.hpp"
+#include "robotd/result.hpp"
+
+namespace robotd::hightorque::sim {
+
+struct BusSpec {
+  enum class Kind : std::uint8_t { kStandIn, kSocketCan, kBoard };
+  Kind kind = Kind::kStandIn;
+  std::string path;      // stand-in socket path, SocketCAN interface name, or the board's pty symlink
+  std::vector<int> ids;  // ascending, each 1 … 126, no repeats
+};
+
+struct MotorPhysics {
+  double inertia_kg_m2 = 0.02;
+  double friction_nm_s_rad = 0.05;  // viscous
+  double torque_max_nm = 40;
+};
+
+struct SimOptions {
+  std::vector<BusSpec> buses;  // in command-line order: the control channel's "bus" index
+  std::string control_path;    // --control; empty: no control channel
+  MotorPhysics physics;
+  std::string model = "5047_36";  // what 00 07 answers
+  FirmwareVersion firmware{.motor = 0, .major = 0, .minor = 3, .patch = 3};
+  double gain_factor = 1.0;          // MotorScaling::gain_factor, CAN-FD and board
+  double board_torque_per_unit = 0;  // board τ LSB, N·m; 0: from the model (board_torque_per_unit())
+  bool quiet = false;
+};
+
+/// "1-6", "1,2,5", "1-4,7": ascending unique ids within 1 … 126.
+Result<std::vector<int>> parse_motor_ids(std::string_view text);
+/// "PATH:IDS" (split at the last colon) for `kind`; `option` names it in errors.
+Result<BusSpec> parse_bus_spec(BusSpec::Kind kind, std::string_view text, std::string_view option);
+/// "MAJOR.MINOR.PATCH", each 0 … 255.
+Result<FirmwareVersion> parse_firmware(std::string_view text);
+/// The livelybot board's torque LSB for a motor model (N·m per unit; 0.004938 for 5047_36),
+/// or 0 for a model the SDK's table does not list.
+double model_torque_per_unit(std::string_view model);
+
+}  // namespace robotd::hightorque::sim
