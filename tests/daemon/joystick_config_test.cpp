@@ -75,6 +75,16 @@ TEST(JoystickConfig, EvdevMappingTakesCodeNamesAndRanges) {
   EXPECT_EQ(mapping[0].code, ABS_X) << "fields not given keep the default";
 }
 
+TEST(JoystickConfig, TopicMayBeGivenAsAnAbsoluteRosName) {
+  const auto config = parse(with_joystick(json{{"topic", "/hightorque_joy"}}));
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  EXPECT_EQ(config.value().joystick->topic, "hightorque_joy");
+}
+
+TEST(JoystickConfig, TopicWithSpacesIsRefused) {
+  EXPECT_THAT(errors_of(json{{"topic", "my joy"}}), HasSubstr("joystick.topic: expected a ROS topic name"));
+}
+
 TEST(JoystickConfig, EvdevWithoutDeviceIsRefused) {
   EXPECT_THAT(errors_of(json{{"interface", "evdev"}}), HasSubstr("joystick.device: missing"));
 }

@@ -240,10 +240,10 @@ TEST(WireLayout, JoyPutsItsNineteenFloatsFirstAndTheHeaderLastLikeThePiPlus) {
 
   Xcdr1 expected;
   expected.f32(0).f32(1.0F).f32(0).f32(0).f32(0).f32(0.5F).f32(0).f32(0);  // sticks, triggers, d-pad
-  expected.f32(1.0F);                                                       // a
-  for (int button = 0; button < 9; ++button) expected.f32(0);               // b .. l
-  expected.f32(1.0F);                                                       // r
-  expected.i32(7).u32(8).string("js0");                                     // header, at offset 76
+  expected.f32(1.0F);                                                      // a
+  for (int button = 0; button < 9; ++button) expected.f32(0);              // b .. l
+  expected.f32(1.0F);                                                      // r
+  expected.i32(7).u32(8).string("js0");                                    // header, at offset 76
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(raw.reader.get())));
 }
 

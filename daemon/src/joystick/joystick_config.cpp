@@ -202,9 +202,9 @@ JoystickConfig read_joystick_config(JsonReader& reader, std::vector<std::string>
   config.device = reader.string_or("device", config.device);
   if (config.device.empty()) reader.error("device", "expected a device path, got \"\"");
   config.topic = reader.string_or("topic", config.topic);
-  const std::string_view topic = std::string_view(config.topic).substr(config.topic.starts_with('/') ? 1 : 0);
-  if (topic.empty() || topic.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_/") !=
-                           std::string_view::npos) {
+  if (config.topic.starts_with('/')) config.topic.erase(0, 1);  // a ROS name may be given absolute
+  if (config.topic.empty() || config.topic.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_/") != std::string::npos) {
     reader.error("topic", "expected a ROS topic name of letters, digits, _ and /, got \"" + config.topic + "\"");
   }
   config.rate_hz = static_cast<int>(reader.integer_or("rate_hz", config.rate_hz, 0, 1000));
