@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "robotd/driver/monotonic_clock.hpp"
 #include "sim_driver.hpp"
 
 namespace robotd::sim {
@@ -185,9 +186,7 @@ Result<nlohmann::json> SimDriver::inject_disconnect(const nlohmann::json& args) 
   const auto for_ms = reader.integer_or("for_ms", 0, 0, 600'000);
   reader.finish();
   if (!errors.empty()) return invalid_arguments("disconnect", errors);
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  link_down_until_ns_.store(static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec + for_ms * 1'000'000);
+  link_down_until_ns_.store(driver::monotonic_now_ns() + for_ms * 1'000'000);
   change_injected_faults([](InjectedFaults& faults) { faults.link_lost = true; });
   return nlohmann::json{{"link", "disconnected"}, {"for_ms", for_ms}};
 }

@@ -5,16 +5,14 @@
 #include <cstdint>
 #include <ctime>
 
+#include "robotd/driver/monotonic_clock.hpp"
+
 namespace robotd::rt {
 
 inline constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 inline constexpr std::int64_t kNsPerMs = 1'000'000;
 
-inline std::int64_t monotonic_now_ns() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerSecond + ts.tv_nsec;
-}
+using driver::monotonic_now_ns;  // the same clock drivers stamp with
 
 inline std::int64_t realtime_now_ns() noexcept {
   timespec ts{};

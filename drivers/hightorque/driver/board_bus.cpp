@@ -98,7 +98,7 @@ class BoardBus final : public MotorBus {
  private:
   void deliver(const BoardFrame& frame, ReplySink& sink) noexcept {
     ++frames_received_;
-    std::array<BoardMotorState, kMaxMotorId> states{};
+    std::array<BoardMotorState, driver::kMaxJoints> states;
     const std::size_t count = decode_board_states(frame.command, frame.bytes(), scaling_, states);
     for (std::size_t i = 0; i < count; ++i) {
       Reply reply;

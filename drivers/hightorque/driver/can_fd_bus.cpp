@@ -28,7 +28,7 @@ class CanFdBus final : public MotorBus {
 
   BusIo send_commands(std::span<const BlockSlot> commanded, std::span<const int> idle, Query query) noexcept override {
     if (const BusIo sent = send_slots(commanded, query); sent == BusIo::kClosed) return sent;
-    std::array<BlockSlot, kMaxMotorId> stops{};
+    std::array<BlockSlot, driver::kMaxJoints> stops;  // a device has at most this many motors
     for (std::size_t i = 0; i < idle.size() && i < stops.size(); ++i) {
       stops[i].motor = idle[i];
       stops[i].command.mode = Mode::kStop;
@@ -37,7 +37,7 @@ class CanFdBus final : public MotorBus {
   }
 
   BusIo send_brake(std::span<const int> motors, Query query) noexcept override {
-    std::array<BlockSlot, kMaxMotorId> brakes{};
+    std::array<BlockSlot, driver::kMaxJoints> brakes;
     for (std::size_t i = 0; i < motors.size() && i < brakes.size(); ++i) {
       brakes[i].motor = motors[i];
       brakes[i].command.mode = Mode::kBrake;

@@ -21,7 +21,7 @@ driver::Diagnostics HighTorqueDriver::diagnostics() const {
   const DriverSnapshot snapshot = snapshot_.load();
   driver::Diagnostics values;
   values.emplace_back("link", snapshot.link_up ? "up" : "down");
-  values.emplace_back("motor_timeout_ms", std::to_string(params_.motor_timeout_ms));
+  values.emplace_back("motor_timeout_ms", std::to_string(motor_timeout_ms_.load()));
   for (std::size_t b = 0; b < params_.buses.size(); ++b) {
     const BusCounters& bus = snapshot.buses[b];
     const std::string prefix = "bus." + params_.buses[b].name;

@@ -35,6 +35,7 @@ Result<void> HighTorqueDriver::configure(const nlohmann::json& params) {
     imu_ = std::move(imu.value());
   }
   params_ = std::move(parsed.value());
+  motor_timeout_ms_.store(params_.motor_timeout_ms);
   buses_.clear();
   motors_on_bus_.clear();
   for (auto& row : motor_at_) row.fill(-1);
@@ -109,7 +110,7 @@ Result<void> HighTorqueDriver::open_and_probe() {
   std::vector<std::size_t> all(params_.motors.size());
   for (std::size_t m = 0; m < all.size(); ++m) all[m] = m;
   // The motors' own watchdog first: from here on they brake by themselves if robotd goes away.
-  send_to_motors(all, SystemRequest::Kind::kCommandTimeout, params_.motor_timeout_ms);
+  send_to_motors(all, SystemRequest::Kind::kCommandTimeout, motor_timeout_ms_.load());
   auto answered =
       await_motor_states(all, std::chrono::milliseconds(params_.connect_timeout_ms), "after the link opened");
   if (!answered) return make_error(ErrorCode::kNotAvailable, answered.error().message);
@@ -134,12 +135,11 @@ Result<void> HighTorqueDriver::recover() {
     if (motors_[m].status.fault != 0) faulted.push_back(m);
   }
   // A motor clears its fault on a stop command once the cause is gone.
-  send_to_motors(faulted, SystemRequest::Kind::kStop);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   std::string still;
   do {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
     send_to_motors(faulted, SystemRequest::Kind::kStop);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
     drain_buses();
     still.clear();
     for (const std::size_t m : faulted) {
@@ -154,6 +154,7 @@ Result<void> HighTorqueDriver::recover() {
 }
 
 void HighTorqueDriver::drain_buses() noexcept {
+  reply_time_ns_ = driver::monotonic_now_ns();
   for (std::size_t b = 0; b < buses_.size(); ++b) {
     draining_bus_ = b;
     (void)buses_[b]->receive(*this);
@@ -214,7 +215,7 @@ void HighTorqueDriver::on_reply(const Reply& reply) noexcept {
   if (index < 0) return;  // a motor the joint map does not know: ignored
   const MotorParams& motor = params_.motors[static_cast<std::size_t>(index)];
   MotorRuntime& runtime = motors_[static_cast<std::size_t>(index)];
-  const std::int64_t now_ns = driver::monotonic_now_ns();
+  const std::int64_t now_ns = reply_time_ns_;
   MotorStatus& status = runtime.status;
   status.position_rad = motor.direction * state.position_rad + motor.zero_offset_rad;
   status.velocity_rad_s = motor.direction * state.velocity_rad_s;
@@ -239,6 +240,7 @@ driver::IoResult HighTorqueDriver::read(driver::Feedback& out, driver::FaultInfo
     return driver::IoResult::kDisconnected;
   }
   const std::int64_t now_ns = driver::monotonic_now_ns();
+  reply_time_ns_ = now_ns;
   for (std::size_t b = 0; b < buses_.size(); ++b) {
     draining_bus_ = b;
     if (buses_[b]->receive(*this) == BusIo::kClosed) {
@@ -287,8 +289,8 @@ driver::IoResult HighTorqueDriver::write(const driver::CommandFrame& command, dr
 }
 
 void HighTorqueDriver::send_tick(const driver::CommandFrame& command) noexcept {
-  std::array<BlockSlot, kMaxMotorId> commanded{};
-  std::array<int, kMaxMotorId> idle{};
+  std::array<BlockSlot, driver::kMaxJoints> commanded;
+  std::array<int, driver::kMaxJoints> idle{};
   for (std::size_t b = 0; b < buses_.size(); ++b) {
     std::size_t commanded_count = 0;
     std::size_t idle_count = 0;

@@ -60,7 +60,6 @@ struct BusCounters {
 /// What the RT thread publishes for diagnostics() and the ops.
 struct DriverSnapshot {
   bool link_up = false;
-  bool estop = false;
   std::uint64_t ticks = 0;
   std::array<MotorStatus, driver::kMaxJoints> motors{};
   std::array<BusCounters, kMaxBuses> buses{};
@@ -136,7 +135,8 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   // RT-owned state.
   std::array<MotorRuntime, driver::kMaxJoints> motors_{};
   std::array<BusRuntime, kMaxBuses> bus_runtime_{};
-  std::size_t draining_bus_ = 0;  // which bus on_reply hears from
+  std::size_t draining_bus_ = 0;    // which bus on_reply hears from
+  std::int64_t reply_time_ns_ = 0;  // when this drain of the buses began: the replies' time
   bool link_up_ = false;
   std::uint64_t ticks_ = 0;
   std::int64_t second_started_ns_ = 0;
@@ -158,6 +158,7 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   mutable std::mutex ops_mutex_;  // one op at a time; never taken by the RT thread
   driver::SeqLock<DriverSnapshot> snapshot_;
   std::atomic<bool> connected_{false};
+  std::atomic<int> motor_timeout_ms_{0};  // set by configure and the set_motor_timeout op
 };
 
 }  // namespace robotd::hightorque

@@ -131,8 +131,7 @@ Result<nlohmann::json> HighTorqueDriver::op_motor_info(const nlohmann::json& arg
   const auto chosen = motor_argument(args, "motor_info", kMotorUsage);
   if (!chosen) return chosen.error();
   const std::size_t motor = chosen.value();
-  while (replies_.pop()) {
-  }
+  replies_.clear();
   const int id = params_.motors[motor].id;
   for (const InfoKind kind : {InfoKind::kFirmwareVersion, InfoKind::kHardwareVersion, InfoKind::kModel}) {
     auto queued = queue_request(motor, SystemRequest{.kind = SystemRequest::Kind::kInfo, .motor = id, .info = kind});
@@ -171,7 +170,7 @@ Result<nlohmann::json> HighTorqueDriver::op_set_motor_timeout(const nlohmann::js
     }
     if (!queued) return queued.error();
   }
-  params_.motor_timeout_ms = static_cast<int>(*timeout_ms);
+  motor_timeout_ms_.store(static_cast<int>(*timeout_ms));
   return json{{"timeout_ms", *timeout_ms}, {"motors", params_.motors.size()}};
 }
 

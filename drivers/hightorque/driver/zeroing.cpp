@@ -60,8 +60,7 @@ Result<void> HighTorqueDriver::reset_zero(std::span<const int> joints) {
     drain_buses();
   } while (std::chrono::steady_clock::now() < settled);
 
-  while (replies_.pop()) {
-  }
+  replies_.clear();
   send_to_motors(motors, SystemRequest::Kind::kSetZero);
   if (auto done = await_results(motors, "set zero"); !done) return done;
   if (params_.zero_save_to_flash) {

@@ -34,11 +34,10 @@ Result<std::vector<CanMessage>> PiperDriver::exchange(std::span<const CanMessage
   std::vector<CanMessage> replies;
   replies.reserve(count);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
-  CanMessage message;
   while (replies.size() < count) {
-    if (replies_.pop(message)) {
-      if (message.id == reply_id && !(reply_id == can_id::kFirmware && is_firmware_request(message))) {
-        replies.push_back(message);
+    if (const auto message = replies_.pop()) {
+      if (message->id == reply_id && !(reply_id == can_id::kFirmware && is_firmware_request(*message))) {
+        replies.push_back(*message);
       }
       continue;
     }
@@ -63,13 +62,13 @@ Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::ui
     return make_error(ErrorCode::kTransport, "could not send " + hex_id(request.id) + " on " + link_name_.data());
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
-  CanMessage message;
   while (std::chrono::steady_clock::now() < deadline) {
-    if (!replies_.pop(message)) {
+    const auto message = replies_.pop();
+    if (!message) {
       std::this_thread::sleep_for(1ms);
       continue;
     }
-    const auto frame = decode(message, codec_);
+    const auto frame = decode(*message, codec_);
     const auto* ack = frame ? std::get_if<SetAck>(&*frame) : nullptr;
     if (ack != nullptr && ack->command == command) return *ack;
   }

@@ -273,7 +273,7 @@ driver::IoResult PiperDriver::read(driver::Feedback& out, driver::FaultInfo& fau
       return driver::IoResult::kFault;
     }
     ++rx_frames_;
-    if (is_reply(message.id)) replies_.push(message);
+    if (is_reply(message.id)) (void)replies_.push(message);
     const auto frame = decode(message, codec_);
     if (!frame) {
       ++arm_.unknown_frames;

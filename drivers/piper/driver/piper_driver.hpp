@@ -25,9 +25,9 @@
 #include "driver/arm_state.hpp"
 #include "driver/command_streamer.hpp"
 #include "driver/piper_params.hpp"
-#include "driver/reply_ring.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/seqlock.hpp"
+#include "robotd/driver/spsc_ring.hpp"
 #include "robotd/transport/can_transport.hpp"
 
 namespace robotd::piper {
@@ -109,7 +109,9 @@ class PiperDriver final : public driver::Driver {
   std::atomic<bool> hold_for_ops_{false};  // a motion op drives the arm (see CommandStreamer::plan)
   std::atomic<std::uint64_t> tx_frames_{0};
   std::atomic<std::uint64_t> tx_dropped_{0};
-  ReplyRing replies_;
+  // Frames the arm sends in answer to a query or setting, from the RT thread to the op waiting
+  // for them; when full the newest are dropped and the op times out and says so.
+  driver::SpscRing<transport::CanMessage, 256> replies_;
   driver::SeqLock<ArmSnapshot> snapshot_;
 
   // RT thread (and connect/recover while the loop is paused).

@@ -25,19 +25,7 @@
 
 #include <gtest/gtest.h>
 
-// Counts this thread's operator new calls so a test can show the hot path does not allocate.
-// Kept out of line: inlined, GCC would see the malloc/free pairing behind new/delete and warn.
-namespace {
-thread_local std::size_t g_allocations = 0;
-}  // namespace
-
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* memory) noexcept { std::free(memory); }
-[[gnu::noinline]] void operator delete(void* memory, std::size_t /*size*/) noexcept { std::free(memory); }
+#include "thread_allocations.hpp"
 
 namespace robotd::hightorque {
 namespace {
@@ -590,7 +578,7 @@ TEST(Replies, NeverReadPastTheBuffer) {
 TEST(MotorReplies, EveryStateReplyRoundTripsAtEveryWidth) {
   for (const Query query : {Query::kCounter, Query::kState, Query::kStateTemperature, Query::kCompact}) {
     for (const Width width : {Width::kInt16, Width::kInt32, Width::kFloat}) {
-      SCOPED_TRACE(testing::Message() << "query " << static_cast<int>(query) << " width " << static_cast<int>(width));
+      SCOPED_TRACE(::testing::Message() << "query " << static_cast<int>(query) << " width " << static_cast<int>(width));
       MotorState state;
       state.motor = 9;
       state.query = query;
@@ -664,7 +652,7 @@ TEST(Requests, EveryModeRoundTripsAtEveryWidth) {
        {Mode::kStop, Mode::kBrake, Mode::kVoltage, Mode::kCurrent, Mode::kTorque, Mode::kVelocity, Mode::kPosition,
         Mode::kVelocityAcceleration, Mode::kPositionVelocityTorque, Mode::kPositionVelocityAcceleration, Mode::kMit}) {
     for (const Width width : {Width::kInt16, Width::kInt32, Width::kFloat}) {
-      SCOPED_TRACE(testing::Message() << "mode " << mode_text(static_cast<std::uint8_t>(mode)) << " width "
+      SCOPED_TRACE(::testing::Message() << "mode " << mode_text(static_cast<std::uint8_t>(mode)) << " width "
                                       << static_cast<int>(width));
       MotorCommand command = mit(rev(0.25), rev(-0.5), 1.5, gain(20), gain(2));
       command.mode = mode;
@@ -1137,7 +1125,7 @@ TEST(Robustness, HotPathDoesNotAllocate) {
   std::array<CanMessage, 5> frames{};
   BoardFrameSplitter splitter;
   BoardFrame frame;
-  const std::size_t before = g_allocations;
+  const std::size_t before = testing::allocations_on_this_thread();
   const CanMessage command = encode_command(1, mit(1, 2, 3, 4, 5), Width::kInt32, Query::kState, kCanFd);
   const std::size_t blocks = encode_block(slots, Query::kState, kCanFdById, frames);
   MotorState state;
@@ -1147,7 +1135,7 @@ TEST(Robustness, HotPathDoesNotAllocate) {
   const std::size_t used = splitter.feed(stream);
   const bool ready = splitter.next(frame);
   const char* text = fault_text(0x99);
-  EXPECT_EQ(g_allocations, before);
+  EXPECT_EQ(testing::allocations_on_this_thread(), before);
   EXPECT_EQ(command.length, 24U);
   EXPECT_EQ(blocks, 2U);
   EXPECT_TRUE(reply.has_value());

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "imu_sim_process.hpp"
+#include "robotd/driver/monotonic_clock.hpp"
 #include "robotd/kinematics/rotation.hpp"
 
 namespace robotd::imu {
@@ -123,9 +124,7 @@ TEST_F(LiveImuSource, SamplesArriveAtTheEmulatorsRate) {
   driver::ImuSample sample;
   std::int64_t stamp = 0;
   ASSERT_TRUE(source_->latest(sample, stamp));
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  const std::int64_t now_ns = now.tv_sec * 1'000'000'000LL + now.tv_nsec;
+  const std::int64_t now_ns = driver::monotonic_now_ns();
   EXPECT_LE(stamp, now_ns);
   EXPECT_LT(now_ns - stamp, 100'000'000);
   // Swaying gently about level: gravity dominates the specific force.

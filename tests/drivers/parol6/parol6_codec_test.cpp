@@ -23,25 +23,7 @@
 
 #include "codec/joint_units.hpp"
 #include "codec/parol6_frames.hpp"
-
-// Counts this thread's operator new calls so tests can show a path does not allocate (the
-// kinematics tests in this binary use it too). All of them stay out of line: inlined, GCC would
-// see the malloc/free pairing behind new/delete and warn.
-namespace {
-thread_local std::size_t g_allocations = 0;
-}  // namespace
-
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* memory) noexcept { std::free(memory); }
-[[gnu::noinline]] void operator delete(void* memory, std::size_t /*size*/) noexcept { std::free(memory); }
-
-namespace robotd::parol6::test {
-std::size_t allocations_on_this_thread() { return g_allocations; }
-}  // namespace robotd::parol6::test
+#include "thread_allocations.hpp"
 
 namespace robotd::parol6 {
 namespace {
@@ -878,13 +860,13 @@ TEST(Parol6Parser, ParsingAndDecodingDoNotAllocate) {
   }
   FrameParser parser(FrameParser::Style::kResync);
   std::int64_t sum = 0;
-  const std::size_t before = test::allocations_on_this_thread();
+  const std::size_t before = testing::allocations_on_this_thread();
   parser.feed(stream, [&](std::span<const std::uint8_t> body) {
     if (const auto frame = decode_robot_body(body)) sum += frame->position_steps[0];
   });
   const auto bytes = encode(HostFrame{});
   sum += decode_host_body(body_of(bytes))->command;
-  EXPECT_EQ(test::allocations_on_this_thread(), before);
+  EXPECT_EQ(testing::allocations_on_this_thread(), before);
   EXPECT_GE(parser.frames(), 1U);
   EXPECT_NE(sum, 0);
 }

@@ -16,12 +16,9 @@
 #include <gtest/gtest.h>
 
 #include "codec/joint_units.hpp"
+#include "thread_allocations.hpp"
 
 namespace robotd::parol6 {
-namespace test {
-std::size_t allocations_on_this_thread();  // parol6_codec_test.cpp counts operator new for this binary
-}  // namespace test
-
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -116,7 +113,7 @@ constexpr std::array<FkCheck, 4> kFkChecks{{
 TEST(Parol6Kinematics, ForwardKinematicsMatchesTheSpecCheckValues) {
   for (const FkCheck& check : kFkChecks) {
     const Pose pose = forward_kinematics(degrees_to_q(check.q_deg));
-    SCOPED_TRACE(testing::Message() << "q1 " << check.q_deg[0] << ", q2 " << check.q_deg[1]);
+    SCOPED_TRACE(::testing::Message() << "q1 " << check.q_deg[0] << ", q2 " << check.q_deg[1]);
     // The spec gives 2 or 3 decimals; its 2-decimal values are rounded to 0.005 mm.
     EXPECT_NEAR(pose.x_m * 1000, check.position_mm[0], 0.01);
     EXPECT_NEAR(pose.y_m * 1000, check.position_mm[1], 0.01);
@@ -148,11 +145,11 @@ TEST(Parol6Kinematics, JointOneTurnsTheArmAboutBaseZ) {
 
 TEST(Parol6Kinematics, ForwardKinematicsDoesNotAllocate) {
   const JointVector q = degrees_to_q({10, -60, 200, 20, -30, 100});
-  const std::size_t before = test::allocations_on_this_thread();
+  const std::size_t before = testing::allocations_on_this_thread();
   const Pose pose = forward_kinematics(q);
   const Eigen::Isometry3d back = transform_of(pose);
   const Pose again = pose_of(back);
-  EXPECT_EQ(test::allocations_on_this_thread(), before);
+  EXPECT_EQ(testing::allocations_on_this_thread(), before);
   EXPECT_NEAR(again.x_m, pose.x_m, 1e-12);
 }
 
@@ -236,7 +233,7 @@ TEST(Parol6InverseKinematics, RecoversRandomReachableConfigurations) {
     JointVector seed = q;
     for (double& angle : seed) angle += random.uniform(-0.1, 0.1);
     const IkResult result = inverse_kinematics(target, seed, limits.min_rad, limits.max_rad);
-    SCOPED_TRACE(testing::Message() << "sample " << i);
+    SCOPED_TRACE(::testing::Message() << "sample " << i);
     ASSERT_TRUE(result.converged) << "position error " << result.position_error_m << " m, orientation error "
                                   << result.orientation_error_rad << " rad";
     const Difference error = difference(tool_transform(result.q_rad), transform_of(target));

@@ -21,25 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "codec/piper_frames.hpp"
-
-// Counts this thread's operator new calls so tests can show a path does not allocate (the
-// kinematics tests in this binary use it too). All of them stay out of line: inlined, GCC would
-// see the malloc/free pairing behind new/delete and warn.
-namespace {
-thread_local std::size_t g_allocations = 0;
-}  // namespace
-
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* memory) noexcept { std::free(memory); }
-[[gnu::noinline]] void operator delete(void* memory, std::size_t /*size*/) noexcept { std::free(memory); }
-
-namespace robotd::piper::test {
-std::size_t allocations_on_this_thread() { return g_allocations; }
-}  // namespace robotd::piper::test
+#include "thread_allocations.hpp"
 
 namespace robotd::piper {
 namespace {
@@ -851,9 +833,9 @@ TEST(PiperCodecEdges, DecodeDoesNotAllocate) {
   for (const Sample& sample : every_frame_type()) messages.push_back(encode_frame(sample.frame, {}));
   messages.push_back(message_of(0x7FF, Bytes(8, 0)));
   std::size_t decoded_frames = 0;
-  const std::size_t before = test::allocations_on_this_thread();
+  const std::size_t before = testing::allocations_on_this_thread();
   for (const CanMessage& message : messages) decoded_frames += decode(message).has_value() ? 1U : 0U;
-  EXPECT_EQ(test::allocations_on_this_thread(), before);
+  EXPECT_EQ(testing::allocations_on_this_thread(), before);
   EXPECT_EQ(decoded_frames, messages.size() - 1);
 }
 

@@ -10,11 +10,9 @@
 
 #include <gtest/gtest.h>
 
-namespace robotd::piper {
-namespace test {
-std::size_t allocations_on_this_thread();  // piper_codec_test.cpp counts operator new for this binary
-}  // namespace test
+#include "thread_allocations.hpp"
 
+namespace robotd::piper {
 namespace {
 
 using Joints = std::array<double, kArmJoints>;
@@ -74,7 +72,7 @@ class RandomPoses {
 TEST(PiperKinematics, ForwardKinematicsMatchesTheSdkVectors) {
   for (const FkVector& vector : kSdkVectors) {
     const CartesianPose pose = forward_kinematics(vector.q_rad, vector.variant);
-    SCOPED_TRACE(testing::Message() << "q = " << vector.q_rad[1] << ", variant " << static_cast<int>(vector.variant));
+    SCOPED_TRACE(::testing::Message() << "q = " << vector.q_rad[1] << ", variant " << static_cast<int>(vector.variant));
     EXPECT_NEAR(pose.x_m * 1000, vector.position_mm[0], 0.005);
     EXPECT_NEAR(pose.y_m * 1000, vector.position_mm[1], 0.005);
     EXPECT_NEAR(pose.z_m * 1000, vector.position_mm[2], 0.005);
@@ -167,11 +165,11 @@ TEST(PiperKinematics, QuaternionMatchesEigen) {
 
 TEST(PiperKinematics, ForwardKinematicsDoesNotAllocate) {
   const Joints q{0.2, 0.2, -0.2, 0.3, -0.2, 0.5};
-  const std::size_t before = test::allocations_on_this_thread();
+  const std::size_t before = testing::allocations_on_this_thread();
   const CartesianPose pose = forward_kinematics(q, DhVariant::kOffset);
   const Eigen::Isometry3d back = transform_of(pose);
   const auto quaternion = quaternion_xyzw(pose);
-  EXPECT_EQ(test::allocations_on_this_thread(), before);
+  EXPECT_EQ(testing::allocations_on_this_thread(), before);
   EXPECT_GT(back.translation().norm() + quaternion[3], 0);
 }
 
@@ -184,7 +182,7 @@ TEST(PiperKinematics, InverseKinematicsRecoversReachablePoses) {
       Joints seed = q;
       for (double& angle : seed) angle += random.uniform(-0.1, 0.1);
       const IkResult result = inverse_kinematics(target, seed, variant, kMin, kMax);
-      SCOPED_TRACE(testing::Message() << "sample " << i << ", variant " << static_cast<int>(variant));
+      SCOPED_TRACE(::testing::Message() << "sample " << i << ", variant " << static_cast<int>(variant));
       ASSERT_TRUE(result.converged) << "position error " << result.position_error_m << " m, orientation error "
                                     << result.orientation_error_rad << " rad after " << result.iterations;
       const Difference error = difference(flange_transform(result.q_rad, variant), transform_of(target));

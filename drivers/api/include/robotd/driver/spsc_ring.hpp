@@ -35,6 +35,12 @@ class SpscRing {
     return item;
   }
 
+  /// Consumer side: drops everything waiting.
+  void clear() noexcept {
+    while (pop()) {
+    }
+  }
+
   bool empty() const noexcept { return tail_.load(std::memory_order_acquire) == head_.load(std::memory_order_acquire); }
 
  private:
