@@ -3,6 +3,7 @@
 // clients use it through DDS as they would the PI Plus middleware.
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <iostream>
 #include <thread>
 
@@ -230,6 +231,24 @@ TEST_F(HighTorqueTest, MotorOpsAnswerAndAMotorFaultIsShownAndRecovered) {
   EXPECT_EQ(wait_for_state("hightorque", DeviceState::kRunning).state, DeviceState::kRunning);
 }
 
+// The second safety net: robotd killed outright sends nothing more, and every motor brakes by
+// itself once its own command timeout (armed on connect) runs out.
+TEST_F(HighTorqueTest, WhenRobotdDiesEveryMotorBrakesOnItsOwnWatchdog) {
+  start();
+  Session session = acquire({}, ControlMode::kPosition, Behavior::kKeep, 2000ms);
+  ASSERT_TRUE(session.send_positions(std::vector<float>(23, 0.1F)));
+  ASSERT_TRUE(
+      wait_for_joints([](const JointState& s) { return std::fabs(s.position[5] - 0.1) < 0.02; }, 3s, "hightorque"));
+  ASSERT_EQ(::kill(robotd_->pid(), SIGKILL), 0);
+  ASSERT_TRUE(robotd_->wait_for_exit(2s));
+  std::this_thread::sleep_for(400ms);  // the motors' timeout is 200 ms
+  for (std::size_t m = 0; m < kPiPlusMap.size(); ++m) {
+    const nlohmann::json state = motor(m);
+    EXPECT_EQ(state["mode"], "brake") << "motor " << m << ": " << state.dump();
+    EXPECT_EQ(state["fault"], 0x15) << "motor " << m << ": " << state.dump();
+  }
+}
+
 TEST_F(HighTorqueTest, SimulatorGoneIsALostLinkAndRobotdReconnectsWhenItReturns) {
   start();
   sim_.kill_hard();
@@ -238,6 +257,61 @@ TEST_F(HighTorqueTest, SimulatorGoneIsALostLinkAndRobotdReconnectsWhenItReturns)
   EXPECT_NE(lost.fault_text.find("bus '"), std::string::npos) << lost.fault_text;
   sim_.restart();
   EXPECT_EQ(wait_for_state("hightorque", DeviceState::kRunning, 10s).state, DeviceState::kRunning) << robotd_->log();
+}
+
+// The same driver on the livelybot USB-CDC CAN board: two ports (ptys), three motors each.
+class HighTorqueBoardTest : public RobotdTest {
+ protected:
+  void SetUp() override {
+    nlohmann::json buses = nlohmann::json::array();
+    nlohmann::json motors = nlohmann::json::array();
+    for (std::size_t b = 0; b < 2; ++b) {
+      const std::string name = "port" + std::to_string(b);
+      buses.push_back({{"name", name}, {"board", {{"device", sim_.bus_path(b)}, {"baud", 4000000}}}});
+      for (int id = 1; id <= 3; ++id) {
+        motors.push_back({{"name", name + "_m" + std::to_string(id)}, {"bus", name}, {"id", id}});
+      }
+    }
+    // The simulator's 5047_36 torque unit, and its default gain factor.
+    const nlohmann::json params{{"buses", buses},
+                                {"motor_models", {{"5047_36", {{"torque_per_unit", 0.004938}, {"gain_factor", 1.0}}}}},
+                                {"motor_defaults",
+                                 {{"model", "5047_36"},
+                                  {"default_kp", 40},
+                                  {"default_kd", 1.0},
+                                  {"effort_max_nm", 20},
+                                  {"kp_max", 300},
+                                  {"kd_max", 20}}},
+                                {"motors", motors}};
+    start_with_device(vendor_device("hightorque", params), /*with_sim_arm=*/false);
+  }
+
+  HighTorqueSimProcess sim_{{HighTorqueSimProcess::board("1-3"), HighTorqueSimProcess::board("1-3")}, {"--quiet"}};
+};
+
+TEST_F(HighTorqueBoardTest, ASessionMovesTheMotorsAndResetZeroZeroesWholePorts) {
+  {
+    Session session = acquire_device("hightorque", {}, ControlMode::kPosition);
+    std::vector<float> target(6, 0.0F);
+    target[1] = 0.3F;
+    target[4] = -0.2F;
+    EXPECT_TRUE(wait_for_joints(
+        [&](const JointState& s) {
+          (void)session.send_positions(target);
+          return std::fabs(s.position[1] - 0.3) < 0.02 && std::fabs(s.position[4] + 0.2) < 0.02 &&
+                 std::fabs(s.velocity[1]) < 0.02 && std::fabs(s.velocity[4]) < 0.02;  // settled
+        },
+        5s, "hightorque"));
+    EXPECT_NEAR(sim_.motor_state(0, 2)["position_rad"].get<double>(), 0.3, 0.02);
+    ASSERT_TRUE(session.release(Behavior::kKeep));  // held at rest where zeroing will find them
+  }
+  const auto partial = client().reset_zero("hightorque", {0}, 5000ms);
+  ASSERT_FALSE(partial) << "a board zeroes a whole port";
+  EXPECT_NE(partial.error().message.find("name all 3 of them or none"), std::string::npos) << partial.error().message;
+  const auto zeroed = client().reset_zero("hightorque", {}, 10000ms);
+  ASSERT_TRUE(zeroed) << zeroed.error().message;
+  EXPECT_NEAR(sim_.motor_state(1, 2)["zero_offset_rad"].get<double>(), -0.2, 0.05);
+  EXPECT_EQ(wait_for_state("hightorque", DeviceState::kRunning).state, DeviceState::kRunning);
 }
 
 }  // namespace

@@ -66,8 +66,9 @@ void Bus::poll_board(std::int64_t now_ns) {
 template <class Action>
 void Bus::for_selected(std::span<const std::uint8_t> payload, std::int64_t now_ns, Action action) {
   for (SimMotor& motor : motors_) {
-    const auto index = static_cast<std::size_t>(motor.id() - 1);
-    const bool selected = payload.empty() || (index < payload.size() && payload[index] != 0);
+    const bool selected = payload.empty() || std::ranges::any_of(payload, [&](std::uint8_t id) {
+                            return id == kBroadcastId || id == motor.id();
+                          });
     if (!selected || motor.muted()) continue;
     motor.heard(now_ns);
     action(motor);

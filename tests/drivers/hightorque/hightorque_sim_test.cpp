@@ -570,8 +570,8 @@ TEST_F(HighTorqueBoardTest, VersionAndStopAdminCommands) {
   EXPECT_EQ(versions[0].command, BoardCommand::kVersion);
   ASSERT_EQ(versions[0].length, 12U);  // [id, major, minor, patch] × 3
   EXPECT_EQ(versions[0].payload[0], 1);
-  EXPECT_EQ(versions[0].payload[2], 3);  // 0.3.3
-  host_->send(BoardCommand::kBrake, std::array<std::uint8_t, 3>{0, 1, 0});
+  EXPECT_EQ(versions[0].payload[2], 3);                               // 0.3.3
+  host_->send(BoardCommand::kBrake, std::array<std::uint8_t, 1>{2});  // motor 2 only
   ASSERT_TRUE(wait_until([] {}, [&] { return motor(2)["mode"] == "brake"; }, 500ms));
   EXPECT_EQ(motor(1)["mode"], "stop");
 }
