@@ -64,13 +64,14 @@ class BoardBus final : public MotorBus {
         return send_admin(BoardCommand::kReboot);
       case SystemRequest::Kind::kCommandTimeout: {
         // 0x85 is a slot command: every motor of the port gets the timeout (LE16 ms).
-        std::array<std::uint8_t, 2 * (kMaxMotorId + 1)> payload{};
+        std::array<std::uint8_t, std::size_t{2} * (kMaxMotorId + 1)> payload{};
         const auto ms = static_cast<std::uint16_t>(request.value);
-        for (int id = 1; id <= highest_id_; ++id) {
-          payload[static_cast<std::size_t>(2 * (id - 1))] = static_cast<std::uint8_t>(ms & 0xFF);
-          payload[static_cast<std::size_t>(2 * (id - 1) + 1)] = static_cast<std::uint8_t>(ms >> 8);
+        const auto slots = static_cast<std::size_t>(highest_id_);
+        for (std::size_t slot = 0; slot < slots; ++slot) {
+          payload[2 * slot] = static_cast<std::uint8_t>(ms & 0xFF);
+          payload[2 * slot + 1] = static_cast<std::uint8_t>(ms >> 8);
         }
-        return send_packet(BoardCommand::kTimeout, std::span(payload).first(static_cast<std::size_t>(2 * highest_id_)));
+        return send_packet(BoardCommand::kTimeout, std::span(payload).first(2 * slots));
       }
       case SystemRequest::Kind::kInfo:
         return send_admin(BoardCommand::kVersion);
