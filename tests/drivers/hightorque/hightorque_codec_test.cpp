@@ -653,7 +653,7 @@ TEST(Requests, EveryModeRoundTripsAtEveryWidth) {
         Mode::kVelocityAcceleration, Mode::kPositionVelocityTorque, Mode::kPositionVelocityAcceleration, Mode::kMit}) {
     for (const Width width : {Width::kInt16, Width::kInt32, Width::kFloat}) {
       SCOPED_TRACE(::testing::Message() << "mode " << mode_text(static_cast<std::uint8_t>(mode)) << " width "
-                                      << static_cast<int>(width));
+                                        << static_cast<int>(width));
       MotorCommand command = mit(rev(0.25), rev(-0.5), 1.5, gain(20), gain(2));
       command.mode = mode;
       command.acceleration_rad_s2 = rev(2.0);

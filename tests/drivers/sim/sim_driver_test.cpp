@@ -104,8 +104,9 @@ TEST_F(SimDriverTest, DescribeReportsJointsLimitsCapabilitiesAndOps) {
     op_names += op.name + " ";
     EXPECT_FALSE(op.help.empty()) << op.name;
   }
-  EXPECT_EQ(op_names,
-            "stop_feedback estop_input disconnect raise_fault set_external_torque stall command_latency state ");
+  EXPECT_EQ(
+      op_names,
+      "stop_feedback estop_input disconnect raise_fault set_external_torque set_imu stall command_latency state ");
 }
 
 TEST_F(SimDriverTest, ConfigureRejectsInvalidParamsNamingTheKey) {
@@ -446,7 +447,7 @@ TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   EXPECT_EQ(result.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(result.error().message,
             R"(unknown op "levitate" (the sim driver has: stop_feedback, estop_input, disconnect, raise_fault, )"
-            R"(set_external_torque, stall, command_latency, state))");
+            R"(set_external_torque, set_imu, stall, command_latency, state))");
 }
 
 TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {
