@@ -159,7 +159,7 @@ struct FirmwareVersion {
 struct ModelName {
   int motor = 0;
   std::array<char, 60> text{};
-};  // NUL-terminated ASCII, ≤ 59 chars
+};  // NUL-terminated printable ASCII (other bytes read as '?'), ≤ 59 chars
 struct CommandResult {
   int motor = 0;
   bool success = false;
@@ -303,6 +303,12 @@ std::size_t decode_board_states(BoardCommand command, std::span<const std::uint8
 std::size_t encode_board_states(BoardCommand command, std::span<const BoardMotorState> states,
                                 std::span<const MotorScaling> scaling_by_motor_id,
                                 std::span<std::uint8_t> out) noexcept;
+/// A kVersion answer: one [id, major, minor, patch] record per motor. Decodes into `out` and
+/// returns how many; stops at a truncated record or when `out` is full; skips motor 0.
+inline constexpr std::size_t kBoardVersionRecordSize = 4;
+std::size_t decode_board_versions(std::span<const std::uint8_t> payload, std::span<FirmwareVersion> out) noexcept;
+/// The board's side: the payload size, or 0 if it does not fit `out` or a field exceeds a byte.
+std::size_t encode_board_versions(std::span<const FirmwareVersion> versions, std::span<std::uint8_t> out) noexcept;
 /// The board's side: slots back into per-motor commands, one per slot in id order (kind
 /// kCommand, width kInt16, query kNone; a 0x8000 position leaves has_position false, the other
 /// fields are always set since the board sends 0 for them). Returns how many were written.

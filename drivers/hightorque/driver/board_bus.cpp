@@ -26,6 +26,8 @@ class BoardBus final : public MotorBus {
     auto opened = port_.open();
     if (opened) port_.flush();
     splitter_ = BoardFrameSplitter{};
+    counted_crc_errors_ = 0;
+    counted_skipped_bytes_ = 0;
     return opened;
   }
   void close() noexcept override { port_.close(); }
@@ -74,7 +76,8 @@ class BoardBus final : public MotorBus {
         return send_packet(BoardCommand::kTimeout, std::span(payload).first(2 * slots));
       }
       case SystemRequest::Kind::kInfo:
-        return send_admin(BoardCommand::kVersion);
+        // The board answers firmware versions only; hardware version and model are not asked.
+        return request.info == InfoKind::kFirmwareVersion ? send_admin(BoardCommand::kVersion) : BusIo::kOk;
     }
     return BusIo::kBusy;
   }
@@ -92,13 +95,26 @@ class BoardBus final : public MotorBus {
         BoardFrame frame;
         while (splitter_.next(frame)) deliver(frame, sink);
       }
+      count_junk();
     }
     return BusIo::kOk;
   }
 
  private:
+  /// Packets that failed their CRC count as dropped, bytes outside any packet as skipped.
+  void count_junk() noexcept {
+    frames_dropped_ += splitter_.crc_errors() - counted_crc_errors_;
+    bytes_skipped_ += splitter_.skipped_bytes() - counted_skipped_bytes_;
+    counted_crc_errors_ = splitter_.crc_errors();
+    counted_skipped_bytes_ = splitter_.skipped_bytes();
+  }
+
   void deliver(const BoardFrame& frame, ReplySink& sink) noexcept {
     ++frames_received_;
+    if (frame.command == BoardCommand::kVersion) {
+      deliver_versions(frame, sink);
+      return;
+    }
     std::array<BoardMotorState, driver::kMaxJoints> states;
     const std::size_t count = decode_board_states(frame.command, frame.bytes(), scaling_, states);
     for (std::size_t i = 0; i < count; ++i) {
@@ -111,6 +127,17 @@ class BoardBus final : public MotorBus {
       reply.state.position_rad = states[i].position_rad;
       reply.state.velocity_rad_s = states[i].velocity_rad_s;
       reply.state.torque_nm = states[i].torque_nm;
+      sink.on_reply(reply);
+    }
+  }
+
+  void deliver_versions(const BoardFrame& frame, ReplySink& sink) noexcept {
+    std::array<FirmwareVersion, kMaxMotorId> versions;
+    const std::size_t count = decode_board_versions(frame.bytes(), versions);
+    for (std::size_t i = 0; i < count; ++i) {
+      Reply reply;
+      reply.kind = Reply::Kind::kFirmwareVersion;
+      reply.version = versions[i];
       sink.on_reply(reply);
     }
   }
@@ -146,6 +173,8 @@ class BoardBus final : public MotorBus {
   ScalingById scaling_;
   int highest_id_;
   BoardFrameSplitter splitter_;
+  std::uint64_t counted_crc_errors_ = 0;
+  std::uint64_t counted_skipped_bytes_ = 0;
 };
 
 }  // namespace

@@ -15,6 +15,12 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
+/// A byte stream (the board's tty) also counts the bytes it skipped between packets.
+std::string skipped_text(const BusParams& params, const BusCounters& counters) {
+  if (params.kind != BusParams::Kind::kBoard) return "";
+  return ", skipped " + std::to_string(counters.bytes_skipped) + " bytes";
+}
+
 }  // namespace
 
 driver::Diagnostics HighTorqueDriver::diagnostics() const {
@@ -28,7 +34,8 @@ driver::Diagnostics HighTorqueDriver::diagnostics() const {
     values.emplace_back(prefix, buses_[b]->describe());
     values.emplace_back(prefix + ".frames", "sent " + std::to_string(bus.frames_sent) + ", received " +
                                                 std::to_string(bus.frames_received) + ", dropped " +
-                                                std::to_string(bus.frames_dropped));
+                                                std::to_string(bus.frames_dropped) +
+                                                skipped_text(params_.buses[b], bus));
     values.emplace_back(prefix + ".rate",
                         fixed(bus.sent_per_s, 0) + " sent/s, " + fixed(bus.received_per_s, 0) + " received/s");
   }

@@ -134,11 +134,13 @@ Result<void> HighTorqueDriver::recover() {
   for (std::size_t m = 0; m < params_.motors.size(); ++m) {
     if (motors_[m].status.fault != 0) faulted.push_back(m);
   }
-  // A motor clears its fault on a stop command once the cause is gone.
+  // A motor clears its fault on a stop command once the cause is gone; the query makes it say
+  // so (a board answers no admin command with a state).
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   std::string still;
   do {
     send_to_motors(faulted, SystemRequest::Kind::kStop);
+    send_to_motors(faulted, SystemRequest::Kind::kQuery);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     drain_buses();
     still.clear();
@@ -149,7 +151,13 @@ Result<void> HighTorqueDriver::recover() {
     }
   } while (!still.empty() && std::chrono::steady_clock::now() < deadline);
   if (!still.empty()) return make_error(ErrorCode::kRefused, "motors still report a fault: " + still);
-  for (auto& motor : motors_) motor.fault_since_ns = 0;
+  // The loop was paused and sent nothing: the silence checks start over, as after connect().
+  const std::int64_t resumed_ns = driver::monotonic_now_ns();
+  for (auto& motor : motors_) {
+    motor.fault_since_ns = 0;
+    motor.status.last_reply_ns = resumed_ns;
+  }
+  for (auto& bus : bus_runtime_) bus.last_reply_ns = resumed_ns;
   return {};
 }
 
@@ -381,6 +389,7 @@ void HighTorqueDriver::publish(std::int64_t now_ns) noexcept {
     snapshot.buses[b].frames_sent = buses_[b]->frames_sent();
     snapshot.buses[b].frames_received = buses_[b]->frames_received();
     snapshot.buses[b].frames_dropped = buses_[b]->frames_dropped();
+    snapshot.buses[b].bytes_skipped = buses_[b]->bytes_skipped();
   }
   snapshot_.store(snapshot);
 }

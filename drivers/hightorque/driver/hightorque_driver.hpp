@@ -53,6 +53,7 @@ struct BusCounters {
   std::uint64_t frames_sent = 0;
   std::uint64_t frames_received = 0;
   std::uint64_t frames_dropped = 0;
+  std::uint64_t bytes_skipped = 0;
   double sent_per_s = 0;  // over the last full second
   double received_per_s = 0;
 };

@@ -99,6 +99,7 @@ Result<nlohmann::json> HighTorqueDriver::op_state() const {
                      {"frames_sent", counters.frames_sent},
                      {"frames_received", counters.frames_received},
                      {"frames_dropped", counters.frames_dropped},
+                     {"bytes_skipped", counters.bytes_skipped},
                      {"sent_per_s", counters.sent_per_s},
                      {"received_per_s", counters.received_per_s}});
   }

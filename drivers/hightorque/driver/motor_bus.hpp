@@ -69,11 +69,13 @@ class MotorBus {
   std::uint64_t frames_sent() const noexcept { return frames_sent_; }
   std::uint64_t frames_received() const noexcept { return frames_received_; }
   std::uint64_t frames_dropped() const noexcept { return frames_dropped_; }
+  std::uint64_t bytes_skipped() const noexcept { return bytes_skipped_; }
 
  protected:
   std::uint64_t frames_sent_ = 0;
   std::uint64_t frames_received_ = 0;
   std::uint64_t frames_dropped_ = 0;  // transmit full, or undecodable on receive
+  std::uint64_t bytes_skipped_ = 0;   // a byte stream's bytes outside any frame (the board's tty)
 };
 
 /// The bus `params.buses[bus]` with the motor scalings of its motors (indexed by CAN id).

@@ -138,15 +138,16 @@ void Bus::serve_board(const BoardFrame& frame, std::int64_t now_ns) {
       reply_packet(frame.command, reply);
       return;
     }
-    case BoardCommand::kVersion: {  // one [id, major, minor, patch] per motor
-      std::vector<std::uint8_t> versions;
+    case BoardCommand::kVersion: {
+      std::vector<FirmwareVersion> versions;
       for (const SimMotor& motor : motors_) {
         if (motor.muted()) continue;
-        versions.insert(versions.end(),
-                        {static_cast<std::uint8_t>(motor.id()), static_cast<std::uint8_t>(firmware_.major),
-                         static_cast<std::uint8_t>(firmware_.minor), static_cast<std::uint8_t>(firmware_.patch)});
+        versions.push_back(FirmwareVersion{
+            .motor = motor.id(), .major = firmware_.major, .minor = firmware_.minor, .patch = firmware_.patch});
       }
-      reply_packet(frame.command, versions);
+      std::array<std::uint8_t, kMaxBoardPayload> versions_payload{};
+      const std::size_t size = encode_board_versions(versions, versions_payload);
+      reply_packet(frame.command, std::span<const std::uint8_t>(versions_payload.data(), size));
       return;
     }
     case BoardCommand::kMotorState:  // the host asks: answered in kind

@@ -1086,6 +1086,31 @@ TEST(BoardStates, StopAtATruncatedRecordAndSkipUnknownMotors) {
   EXPECT_EQ(decode_board_states(BoardCommand::kPosition, payload, kBoardScaling, out), 0U);
 }
 
+TEST(BoardVersions, OneRecordPerMotorRoundTrips) {
+  const std::array<FirmwareVersion, 2> versions{
+      {{.motor = 1, .major = 0, .minor = 3, .patch = 3}, {.motor = 7, .major = 2, .minor = 10, .patch = 255}}};
+  std::array<std::uint8_t, 16> payload{};
+  ASSERT_EQ(encode_board_versions(versions, payload), 8U);
+  EXPECT_EQ(Bytes(payload.begin(), payload.begin() + 8), (Bytes{0x01, 0, 3, 3, 0x07, 2, 10, 255}));
+  std::array<FirmwareVersion, 4> out{};
+  ASSERT_EQ(decode_board_versions(std::span(payload).first(8), out), 2U);
+  EXPECT_EQ(out[1].motor, 7);
+  EXPECT_EQ(out[1].minor, 10);
+  EXPECT_EQ(out[1].patch, 255);
+}
+
+TEST(BoardVersions, TruncatedRecordsMotorZeroAndOverflowAreNotDecoded) {
+  const Bytes payload{0x00, 1, 1, 1, 0x02, 0, 3, 3, 0x03, 0};  // motor 0, motor 2, truncated
+  std::array<FirmwareVersion, 4> out{};
+  ASSERT_EQ(decode_board_versions(payload, out), 1U);
+  EXPECT_EQ(out[0].motor, 2);
+  std::array<FirmwareVersion, 0> none{};
+  EXPECT_EQ(decode_board_versions(payload, none), 0U);
+  std::array<std::uint8_t, 8> room{};
+  EXPECT_EQ(encode_board_versions(std::array<FirmwareVersion, 1>{{{.motor = 256}}}, room), 0U);
+  EXPECT_EQ(encode_board_versions(std::array<FirmwareVersion, 3>{}, room), 0U) << "12 bytes do not fit 8";
+}
+
 // ---- Robustness --------------------------------------------------------------------------------
 
 TEST(Robustness, RandomFramesAndStreamsNeverBreakADecoder) {

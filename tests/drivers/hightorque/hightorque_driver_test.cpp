@@ -1,0 +1,336 @@
+// The HighTorque driver without robotd: its params checked key by key, then the driver against
+// robotd-hightorque-sim over real file descriptors (two CAN-FD stand-in buses, or two USB-CDC
+// board ptys) and robotd-imu-sim's pty, called at 1 kHz the way robotd's loop calls it.
+#include "driver/hightorque_driver.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "driver_loop.hpp"
+#include "hightorque_sim_process.hpp"
+#include "imu_sim_process.hpp"
+
+namespace robotd::hightorque {
+namespace {
+
+using namespace std::chrono_literals;
+using driver::IoResult;
+using testing::diagnostic;
+using testing::DriverLoop;
+using testing::HighTorqueSimProcess;
+using testing::ImuSimProcess;
+using testing::joints_near;
+using testing::position_frame;
+
+// Two buses: "a" carries motors 1-3, "b" motors 1-2. Joint 0 is mounted reversed with an offset.
+constexpr std::size_t kJoints = 5;
+constexpr double kJoint0Offset = 0.2;
+
+nlohmann::json motor_entry(const std::string& name, const std::string& bus, int id) {
+  return {{"name", name}, {"bus", bus}, {"id", id}};
+}
+
+nlohmann::json valid_params(const std::vector<nlohmann::json>& buses) {
+  nlohmann::json motors =
+      nlohmann::json::array({motor_entry("a1", "a", 1), motor_entry("a2", "a", 2), motor_entry("a3", "a", 3),
+                             motor_entry("b1", "b", 1), motor_entry("b2", "b", 2)});
+  motors[0]["direction"] = -1;
+  motors[0]["zero_offset_rad"] = kJoint0Offset;
+  return {{"model", "two test buses"},
+          {"motor_defaults",
+           {{"position_min_rad", -1.5},
+            {"position_max_rad", 1.5},
+            {"velocity_max_rad_s", 10.0},
+            {"kp_max", 300},
+            {"kd_max", 20},
+            {"default_kp", 40},
+            {"default_kd", 1.0},
+            {"effort_max_nm", 30}}},
+          {"motors", motors},
+          {"buses", buses}};
+}
+
+nlohmann::json placeholder_buses() {
+  return nlohmann::json::array({{{"name", "a"}, {"can", {{"transport", "standin"}, {"path", "/tmp/unused-a"}}}},
+                                {{"name", "b"}, {"can", {{"transport", "standin"}, {"path", "/tmp/unused-b"}}}}});
+}
+
+/// Every joint within 0.01 rad of its target and at rest.
+bool settled_at(const driver::Feedback& feedback, const std::vector<double>& target) {
+  for (std::size_t j = 0; j < target.size(); ++j) {
+    if (std::fabs(feedback.joints[j].velocity_rad_s) > 0.02) return false;
+  }
+  return joints_near(feedback, target, 0.01);
+}
+
+/// configure()'s error for `params`, or "" when it was accepted.
+std::string configure_error(const nlohmann::json& params) {
+  HighTorqueDriver driver;
+  const auto configured = driver.configure(params);
+  return configured ? std::string() : configured.error().message;
+}
+
+TEST(HighTorqueParams, EachMistakeNamesItsKeyAndWhatIsExpected) {
+  ASSERT_EQ(configure_error(valid_params(placeholder_buses())), "");
+  struct Case {
+    const char* what;
+    nlohmann::json params;
+    std::vector<std::string> expected;
+  };
+  std::vector<Case> cases;
+  auto with = [](auto change) {
+    nlohmann::json params = valid_params(placeholder_buses());
+    change(params);
+    return params;
+  };
+  cases.push_back({"direction 0",
+                   with([](auto& p) { p["motors"][1]["direction"] = 0; }),
+                   {"motors[1].direction", "expected 1 or -1"}});
+  cases.push_back({"an unknown bus",
+                   with([](auto& p) { p["motors"][2]["bus"] = "c"; }),
+                   {"motors[2].bus", "no bus named \"c\"", "a, b"}});
+  cases.push_back({"an id used twice",
+                   with([](auto& p) { p["motors"][2]["id"] = 1; }),
+                   {"motors[2].id", "used twice on bus \"a\""}});
+  cases.push_back({"a name used twice",
+                   with([](auto& p) { p["motors"][4]["name"] = "a1"; }),
+                   {"motors[4].name", "\"a1\" is used by another motor"}});
+  cases.push_back({"a bus without motors",
+                   with([](auto& p) {
+                     p["buses"].push_back({{"name", "c"}, {"can", {{"transport", "standin"}, {"path", "/tmp/c"}}}});
+                   }),
+                   {"bus \"c\" has no motor"}});
+  cases.push_back({"a default kp above kp_max",
+                   with([](auto& p) { p["motors"][3]["default_kp"] = 400; }),
+                   {"motors[3].default_kp", "at most kp_max"}});
+  cases.push_back({"inverted limits",
+                   with([](auto& p) {
+                     p["motors"][0]["position_min_rad"] = 1.0;
+                     p["motors"][0]["position_max_rad"] = -1.0;
+                   }),
+                   {"motors[0].position_min_rad", "less than position_max_rad"}});
+  cases.push_back({"a motor model nobody defined",
+                   with([](auto& p) { p["motors"][0]["model"] = "9999_1"; }),
+                   {"motors[0].model", "no motor model \"9999_1\""}});
+  cases.push_back({"a misspelt key", with([](auto& p) { p["motor_timout_ms"] = 100; }), {"motor_timout_ms"}});
+  cases.push_back({"an IMU without its serial line",
+                   with([](auto& p) {
+                     p["imu"] = {{"source", "yesense"}};
+                   }),
+                   {"imu", "serial"}});
+  for (const Case& c : cases) {
+    const std::string error = configure_error(c.params);
+    ASSERT_NE(error, "") << c.what << " was accepted";
+    for (const std::string& part : c.expected) {
+      EXPECT_NE(error.find(part), std::string::npos) << c.what << ": \"" << error << "\" lacks \"" << part << "\"";
+    }
+  }
+}
+
+/// The driver on the simulator's two buses, either transport, optionally with an IMU.
+class HighTorqueDriverTest : public ::testing::TestWithParam<HighTorqueSimProcess::Link::Kind> {
+ protected:
+  static std::vector<HighTorqueSimProcess::Link> links() {
+    if (GetParam() == HighTorqueSimProcess::Link::Kind::kBoard) {
+      return {HighTorqueSimProcess::board("1-3"), HighTorqueSimProcess::board("1-2")};
+    }
+    return {HighTorqueSimProcess::standin("1-3"), HighTorqueSimProcess::standin("1-2")};
+  }
+  nlohmann::json bus_entry(std::size_t index, const std::string& name) const {
+    if (GetParam() == HighTorqueSimProcess::Link::Kind::kBoard) {
+      return {{"name", name}, {"board", {{"device", sim_.bus_path(index)}, {"baud", 4000000}}}};
+    }
+    return {{"name", name}, {"can", {{"transport", "standin"}, {"path", sim_.bus_path(index)}}}};
+  }
+  nlohmann::json params() const {
+    nlohmann::json params = valid_params({bus_entry(0, "a"), bus_entry(1, "b")});
+    params["feedback_timeout_ms"] = 50;
+    if (GetParam() == HighTorqueSimProcess::Link::Kind::kBoard) {
+      // The simulator's board motors speak the 5047_36's torque unit (the CAN-FD ones N·m).
+      params["motor_models"] = {{"5047_36", {{"torque_per_unit", 0.004938}, {"gain_factor", 1.0}}}};
+      params["motor_defaults"]["model"] = "5047_36";
+    }
+    return params;
+  }
+  void bring_up(const nlohmann::json& configured) {
+    ASSERT_TRUE(driver_.configure(configured));
+    const auto connected = driver_.connect();
+    ASSERT_TRUE(connected) << connected.error().message;
+    loop_ = std::make_unique<DriverLoop>(driver_, kJoints);
+    ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+  }
+  void TearDown() override {
+    loop_.reset();
+    driver_.disconnect();
+  }
+  nlohmann::json sim_motor(std::size_t bus, int id) const { return sim_.motor_state(bus, id); }
+  bool sim_ok(const nlohmann::json& request) const { return sim_.control(request)["ok"].get<bool>(); }
+
+  HighTorqueSimProcess sim_{links(), {"--quiet"}};
+  HighTorqueDriver driver_;
+  std::unique_ptr<DriverLoop> loop_;
+};
+
+TEST_P(HighTorqueDriverTest, DescribeTellsTheJointMapAndTheOps) {
+  ASSERT_TRUE(driver_.configure(params()));
+  const driver::DeviceDescription description = driver_.describe();
+  ASSERT_EQ(description.joints.size(), kJoints);
+  EXPECT_EQ(description.joints[3].name, "b1");
+  EXPECT_DOUBLE_EQ(description.joints[0].zero_position_rad, kJoint0Offset);
+  EXPECT_DOUBLE_EQ(description.joints[2].limits.position_max_rad, 1.5);
+  EXPECT_DOUBLE_EQ(description.joints[4].default_kp, 40);
+  EXPECT_FALSE(description.has_imu);
+  std::vector<std::string> ops;
+  for (const auto& op : description.ops) ops.push_back(op.name);
+  EXPECT_EQ(ops, (std::vector<std::string>{"state", "motor_info", "set_motor_timeout", "reboot_motor"}));
+}
+
+// Joint targets become MIT frames through the joint map (direction, zero offset), every bus
+// carries a frame each tick, and the feedback comes back in the joint frame.
+TEST_P(HighTorqueDriverTest, PositionTargetsReachEachMotorThroughTheJointMap) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  const std::vector<double> target{0.5, -0.3, 0.2, 0.4, -0.1};
+  loop_->set_command(position_frame(target));
+  ASSERT_TRUE(loop_->wait_for([&](DriverLoop& l) { return settled_at(l.feedback(), target); }))
+      << "feedback never settled at the targets";
+  // Joint 0 = −motor + 0.2, so the motor itself sits at −(0.5 − 0.2).
+  EXPECT_NEAR(sim_motor(0, 1)["position_rad"].get<double>(), -0.3, 0.01);
+  EXPECT_NEAR(sim_motor(1, 1)["position_rad"].get<double>(), 0.4, 0.01);
+  EXPECT_NEAR(sim_motor(1, 2)["kp"].get<double>(), 40, 0.5) << "a position command without gains uses the defaults";
+
+  const nlohmann::json before = sim_.state();
+  std::this_thread::sleep_for(1s);
+  const nlohmann::json after = sim_.state();
+  for (std::size_t b = 0; b < 2; ++b) {
+    const auto frames = after["buses"][b]["frames_received"].get<std::uint64_t>() -
+                        before["buses"][b]["frames_received"].get<std::uint64_t>();
+    EXPECT_GT(frames, 800U) << "bus " << b << " should see about one frame per 1 ms tick";
+  }
+  EXPECT_EQ(diagnostic(driver_, "link"), "up");
+}
+
+// A motor that stops answering is a fault naming it; once it answers again recover() clears it.
+TEST_P(HighTorqueDriverTest, ASilentMotorIsAFaultThatNamesIt) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  ASSERT_TRUE(sim_ok({{"op", "mute"}, {"bus", 1}, {"motor", 2}, {"on", true}}));
+  ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }, 2s));
+  EXPECT_NE(loop_->fault_text().find("motor b2 (bus 'b' id 2) silent"), std::string::npos) << loop_->fault_text();
+  ASSERT_TRUE(sim_ok({{"op", "mute"}, {"bus", 1}, {"motor", 2}, {"on", false}}));
+  ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kOk; }, 2s));
+}
+
+// A motor's own fault code arrives as text; recover() clears it once the cause is gone.
+TEST_P(HighTorqueDriverTest, AMotorFaultIsReportedAndRecovered) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  ASSERT_TRUE(sim_ok({{"op", "set_fault"}, {"bus", 0}, {"motor", 3}, {"code", 0x14}}));
+  ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }, 2s));
+  EXPECT_NE(loop_->fault_text().find("motor a3 (bus 'a' id 3)"), std::string::npos) << loop_->fault_text();
+  const auto refused = loop_->paused([&] { return driver_.recover(); });
+  ASSERT_FALSE(refused) << "the motor still reports its fault";
+  EXPECT_NE(refused.error().message.find("a3"), std::string::npos) << refused.error().message;
+  ASSERT_TRUE(sim_ok({{"op", "clear_fault"}, {"bus", 0}, {"motor", 3}}));
+  const auto recovered = loop_->paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kOk; }, 2s))
+      << loop_->fault_text();
+}
+
+// Garbage on a bus is dropped and counted; the motors keep being served.
+TEST_P(HighTorqueDriverTest, GarbageOnABusIsDroppedAndTheMotorsStayServed) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  ASSERT_TRUE(sim_ok({{"op", "garbage"}, {"bus", 0}, {"count", 20}}));
+  // CAN-FD frames that decode to nothing are dropped; the board's junk bytes are skipped.
+  const char* counted = GetParam() == HighTorqueSimProcess::Link::Kind::kBoard ? "skipped 0 bytes" : "dropped 0";
+  ASSERT_TRUE(loop_->wait_for(
+      [&](DriverLoop&) { return diagnostic(driver_, "bus.a.frames").find(counted) == std::string::npos; }, 2s))
+      << diagnostic(driver_, "bus.a.frames");
+  std::this_thread::sleep_for(200ms);
+  EXPECT_EQ(loop_->last_read(), IoResult::kOk) << loop_->fault_text();
+  EXPECT_EQ(loop_->last_write(), IoResult::kOk) << loop_->fault_text();
+}
+
+// A bus cut mid-motion is a lost link naming the bus; recover() reconnects once the bus is back,
+// and the motors report where they really are — the feedback does not jump.
+TEST_P(HighTorqueDriverTest, ALostBusIsReportedAndRecoverReconnectsWithoutAJump) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  const std::vector<double> target{0.4, 0.1, -0.2, 0.3, 0.0};
+  loop_->set_command(position_frame(target));
+  ASSERT_TRUE(loop_->wait_for([&](DriverLoop& l) { return settled_at(l.feedback(), target); }));
+  ASSERT_TRUE(sim_ok({{"op", "disconnect"}, {"bus", 1}, {"for_ms", 300}}));
+  ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }, 2s));
+  EXPECT_NE(loop_->fault_text().find("bus 'b'"), std::string::npos) << loop_->fault_text();
+  Result<void> recovered = make_error(ErrorCode::kNotAvailable, "not tried");
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (!recovered && std::chrono::steady_clock::now() < deadline) {
+    recovered = loop_->paused([&] { return driver_.recover(); });
+    if (!recovered) std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }, 2s));
+  EXPECT_TRUE(joints_near(loop_->feedback(), target, 0.05)) << "the joints moved while the bus was away";
+}
+
+TEST_P(HighTorqueDriverTest, OpsReachTheMotors) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  const auto info = driver_.call("motor_info", {{"motor", "b1"}});
+  ASSERT_TRUE(info) << info.error().message;
+  EXPECT_EQ(info.value()["firmware_version"], "0.3.3") << info.value().dump();
+  const auto timeout = driver_.call("set_motor_timeout", {{"timeout_ms", 150}});
+  ASSERT_TRUE(timeout) << timeout.error().message;
+  EXPECT_EQ(diagnostic(driver_, "motor_timeout_ms"), "150");
+  const auto bad = driver_.call("motor_info", {{"motor", "nobody"}});
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("nobody"), std::string::npos) << bad.error().message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Transports, HighTorqueDriverTest,
+                         ::testing::Values(HighTorqueSimProcess::Link::Kind::kStandIn,
+                                           HighTorqueSimProcess::Link::Kind::kBoard),
+                         [](const auto& test_info) {
+                           return test_info.param == HighTorqueSimProcess::Link::Kind::kBoard ? "Board"
+                                                                                              : "CanFdStandIn";
+                         });
+
+// The IMU on its own serial line arrives in the same Feedback as the motors.
+TEST(HighTorqueDriverImu, TheImuSerialLineFeedsTheFeedback) {
+  HighTorqueSimProcess sim({HighTorqueSimProcess::standin("1-3"), HighTorqueSimProcess::standin("1-2")}, {"--quiet"});
+  ImuSimProcess imu_sim({}, {"--quiet"});
+  nlohmann::json params =
+      valid_params({{{"name", "a"}, {"can", {{"transport", "standin"}, {"path", sim.bus_path(0)}}}},
+                    {{"name", "b"}, {"can", {{"transport", "standin"}, {"path", sim.bus_path(1)}}}}});
+  params["imu"] = {{"source", "yesense"}, {"serial", {{"device", imu_sim.pty_path()}, {"baud", 460800}}}};
+  HighTorqueDriver driver;
+  ASSERT_TRUE(driver.configure(params));
+  EXPECT_TRUE(driver.describe().has_imu);
+  const auto connected = driver.connect();
+  ASSERT_TRUE(connected) << connected.error().message;
+  constexpr double kRoll = 0.3;
+  ASSERT_TRUE(imu_sim.control({{"op", "set_orientation"}, {"roll_rad", kRoll}, {"pitch_rad", 0}, {"yaw_rad", 0}})["ok"]
+                  .get<bool>());
+  {
+    DriverLoop loop(driver, kJoints);
+    const bool tilted = loop.wait_for(
+        [](DriverLoop& l) {
+          const driver::Feedback feedback = l.feedback();
+          return feedback.has_imu && std::fabs(feedback.imu.orientation_xyzw[0] - std::sin(kRoll / 2)) < 1e-3;
+        },
+        3s);
+    EXPECT_TRUE(tilted) << "no IMU sample with a " << kRoll << " rad roll; " << diagnostic(driver, "imu");
+    const driver::Feedback feedback = loop.feedback();
+    EXPECT_NEAR(feedback.imu.orientation_xyzw[3], std::cos(kRoll / 2), 1e-3);
+    EXPECT_NEAR(std::hypot(feedback.imu.linear_acceleration_m_s2[1], feedback.imu.linear_acceleration_m_s2[2]), 9.80665,
+                0.05)
+        << "gravity, tilted by the roll";
+    EXPECT_EQ(feedback.joint_count, kJoints);
+  }
+  EXPECT_NE(diagnostic(driver, "imu").find("(up)"), std::string::npos) << diagnostic(driver, "imu");
+  driver.disconnect();
+}
+
+}  // namespace
+}  // namespace robotd::hightorque
