@@ -343,7 +343,9 @@ bool HighTorqueDriver::motor_fault(std::int64_t now_ns, driver::FaultInfo& fault
     const MotorRuntime& runtime = motors_[m];
     const MotorParams& motor = params_.motors[m];
     const std::int64_t silent_ms = (now_ns - runtime.status.last_reply_ns) / kNsPerMs;
-    if (silent_ms > params_.feedback_timeout_ms) {
+    // A whole bus gone quiet is a lost link, which the next read() reports.
+    const std::int64_t bus_silent_ms = (now_ns - bus_runtime_[motor.bus].last_reply_ns) / kNsPerMs;
+    if (silent_ms > params_.feedback_timeout_ms && bus_silent_ms <= params_.feedback_timeout_ms) {
       std::snprintf(fault.text.data(), fault.text.size(), "motor %s (bus '%s' id %d) silent for %lld ms",
                     motor.name.c_str(), params_.buses[motor.bus].name.c_str(), motor.id,
                     static_cast<long long>(silent_ms));

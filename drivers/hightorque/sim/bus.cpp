@@ -85,6 +85,7 @@ void Bus::reopen_if_due(std::int64_t now_ns) {
 }
 
 void Bus::poll(std::int64_t now_ns) {
+  now_ns_ = now_ns;
   if (!open_) return;
   if (board()) {
     poll_board(now_ns);
@@ -94,6 +95,7 @@ void Bus::poll(std::int64_t now_ns) {
 }
 
 void Bus::send_due(std::int64_t now_ns) {
+  now_ns_ = now_ns;
   if (!open_) return;
   if (board()) {
     send_board_garbage();
@@ -116,6 +118,10 @@ SimMotor* Bus::motor(int id) {
 }
 
 bool Bus::reply_survives() {
+  if (now_ns_ < silent_until_ns_) {
+    ++replies_dropped_;
+    return false;
+  }
   if (drop_pending_ <= 0) return true;
   --drop_pending_;
   ++replies_dropped_;

@@ -48,6 +48,8 @@ class Bus {
   /// and opens it again after `for_ms`.
   void disconnect(std::int64_t for_ms, std::int64_t now_ns);
   void drop_replies(std::int64_t count) { drop_pending_ += count; }
+  /// Every reply vanishes for `for_ms` while the link stays up: the motors hear but never answer.
+  void silence(std::int64_t for_ms, std::int64_t now_ns) { silent_until_ns_ = now_ns + for_ms * 1'000'000; }
   void queue_garbage(std::int64_t count) { garbage_pending_ += count; }
   void reset_counters();
 
@@ -108,6 +110,8 @@ class Bus {
   std::optional<std::int64_t> reopen_at_ns_;
 
   std::int64_t drop_pending_ = 0;
+  std::int64_t silent_until_ns_ = 0;
+  std::int64_t now_ns_ = 0;  // of the poll or send under way
   std::int64_t garbage_pending_ = 0;
   std::mt19937 random_{0x47D5EED};
 

@@ -23,7 +23,7 @@ constexpr std::int64_t kMaxDurationMs = 3'600'000;
 constexpr std::int64_t kMaxCount = 1'000'000;
 constexpr double kMaxTemperatureC = 200;
 constexpr const char* kOps =
-    "state, set_position, set_fault, clear_fault, set_temperature, mute, drop_replies, garbage, disconnect, "
+    "state, set_position, set_fault, clear_fault, set_temperature, mute, drop_replies, silence, garbage, disconnect, "
     "push_external_torque, reset_counters";
 
 double finite_field(const json& request, const std::string& op, const char* name) {
@@ -109,6 +109,10 @@ json Simulator::control(const json& request) {
       expect_fields(request, op, {"bus", "count"});
       const std::int64_t count = integer_field(request, op, "count", 0, kMaxCount);
       bus_of(request, op).drop_replies(count);
+    } else if (op == "silence") {
+      expect_fields(request, op, {"bus", "for_ms"});
+      const std::int64_t for_ms = integer_field(request, op, "for_ms", 0, kMaxDurationMs);
+      bus_of(request, op).silence(for_ms, now);
     } else if (op == "garbage") {
       expect_fields(request, op, {"bus", "count"});
       const std::int64_t count = integer_field(request, op, "count", 1, kMaxCount);

@@ -401,6 +401,18 @@ TEST_F(HighTorqueSimTest, DropRepliesLosesExactlyThatMany) {
   EXPECT_EQ(sim_->state()["buses"][0]["frames_received"], 0);
 }
 
+TEST_F(HighTorqueSimTest, SilenceLosesEveryReplyForAWhileAndTheLinkStaysUp) {
+  start_bus("1-2");
+  control({{"op", "silence"}, {"bus", 0}, {"for_ms", 200}});
+  send(encode_query(1, Query::kState, Width::kInt16));
+  send(encode_query(2, Query::kState, Width::kInt16));
+  EXPECT_TRUE(replies_for(100ms).empty());
+  EXPECT_EQ(motor(2)["commands"], 1) << "the motors heard";
+  std::this_thread::sleep_for(150ms);
+  send(encode_query(1, Query::kState, Width::kInt16));
+  EXPECT_EQ(replies_for(100ms).size(), 1U) << "answering again once the silence is over";
+}
+
 TEST_F(HighTorqueSimTest, GarbageNeverDecodes) {
   start_bus("1-6");
   control({{"op", "garbage"}, {"bus", 0}, {"count", 200}});
