@@ -143,8 +143,10 @@ std::optional<Injection> xarm_fault(Fault fault) {
     case Fault::kLinkCut:
       return Injection{{{"op", "disconnect"}}, nullptr, Outcome::kReconnects, "the control box closed the"};
     case Fault::kSilence:
-      return Injection{
-          {{"op", "silence"}, {"on", true}}, {{"op", "silence"}, {"on", false}}, Outcome::kReconnects, "report"};
+      return Injection{{{"op", "silence"}, {"on", true}},
+                       {{"op", "silence"}, {"on", false}},
+                       Outcome::kReconnects,
+                       "no report from the control box"};
     case Fault::kGarbage:
       return Injection{{{"op", "garbage"}, {"kind", "frame"}}, nullptr, Outcome::kKeepsRunning, ""};
     case Fault::kBrokenFraming:
