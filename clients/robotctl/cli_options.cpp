@@ -44,7 +44,7 @@ std::optional<std::vector<std::int32_t>> parse_motor_ids(std::string_view text) 
 void add_connection_options(CLI::App& app, robotd::ClientOptions& options) {
   const std::string connection =
       "Connection (defaults from ROBOTD_DOMAIN_ID, ROBOTD_DDS_INTERFACE, ROBOTD_DDS_PEERS, "
-      "ROBOTD_DDS_MULTICAST)";
+      "ROBOTD_DDS_MULTICAST; the DDS Security identity from ROBOTD_DDS_SECURITY_*, see docs/security.md)";
   app.add_option("--domain", options.domain_id, "DDS domain id robotd runs on")
       ->check(CLI::Range(0, 232))
       ->capture_default_str()

@@ -10,15 +10,18 @@ std::string where_robotctl_looked(const robotd::ClientOptions& options) {
   if (!options.cyclonedds_xml.empty()) return text + " (custom Cyclone DDS configuration)";
   text += options.network_interface.empty() ? " (interface chosen by Cyclone DDS"
                                             : " (interface " + options.network_interface;
-  return text + (options.multicast ? ", multicast)" : ")");
+  if (options.multicast) text += ", multicast";
+  if (options.security.enabled()) text += ", DDS Security as " + options.security.identity_certificate;
+  return text + ")";
 }
 
 }  // namespace
 
 int report_failure(const robotd::Error& error, const robotd::ClientOptions& options) {
   if (error.code == robotd::ErrorCode::kNotAvailable) {
-    return report_failure("no robotd answers on " + where_robotctl_looked(options) +
-                          " — is robotd running? (start it with: robotd --config config/robotd.json)");
+    const std::string trust = options.security.enabled() ? ", and does it trust this identity's CA?" : "?";
+    return report_failure("no robotd answers on " + where_robotctl_looked(options) + " — is robotd running" + trust +
+                          " (start it with: robotd --config config/robotd.json)");
   }
   return report_failure(error.message);
 }

@@ -50,6 +50,8 @@ const char* to_string(ErrorCode code) {
       return "invalid argument";
     case ErrorCode::kTransport:
       return "transport error";
+    case ErrorCode::kNotPermitted:
+      return "not permitted";
   }
   return "unknown error";
 }

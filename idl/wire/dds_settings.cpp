@@ -1,8 +1,14 @@
 #include "wire/dds_settings.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string_view>
+#include <system_error>
+
+#include "wire/dds_security.hpp"
 
 namespace robotd::wire {
 namespace {
@@ -30,6 +36,33 @@ std::string xml_escape(std::string_view text) {
   return out;
 }
 
+// Cyclone takes a URI; an absolute path keeps it independent of the working directory.
+std::string file_uri(const std::string& path) {
+  std::error_code error;
+  const auto absolute = std::filesystem::absolute(path, error);
+  return "file:" + xml_escape(error ? path : absolute.string());
+}
+
+// Cyclone's built-in plugins by their plain names: Cyclone finds them next to libddsc (Debian's
+// package looks in its libddsc0debian directory).
+void write_security(std::ostream& xml, const DdsSecurityFiles& files) {
+  xml << "<Security><Authentication>"
+      << "<Library path=\"dds_security_auth\" initFunction=\"init_authentication\" "
+         "finalizeFunction=\"finalize_authentication\"/>"
+      << "<IdentityCA>" << file_uri(files.identity_ca) << "</IdentityCA>"
+      << "<IdentityCertificate>" << file_uri(files.identity_certificate) << "</IdentityCertificate>"
+      << "<PrivateKey>" << file_uri(files.private_key) << "</PrivateKey></Authentication>"
+      << "<AccessControl>"
+      << "<Library path=\"dds_security_ac\" initFunction=\"init_access_control\" "
+         "finalizeFunction=\"finalize_access_control\"/>"
+      << "<PermissionsCA>" << file_uri(files.permissions_ca) << "</PermissionsCA>"
+      << "<Governance>" << file_uri(files.governance) << "</Governance>"
+      << "<Permissions>" << file_uri(files.permissions) << "</Permissions></AccessControl>"
+      << "<Cryptographic>"
+      << "<Library path=\"dds_security_crypto\" initFunction=\"init_crypto\" finalizeFunction=\"finalize_crypto\"/>"
+      << "</Cryptographic></Security>";
+}
+
 bool looks_like_address(std::string_view text) {
   return !text.empty() && text.find_first_not_of("0123456789.:abcdefABCDEF") == std::string_view::npos &&
          (text.find('.') != std::string_view::npos || text.find(':') != std::string_view::npos);
@@ -54,7 +87,9 @@ std::string to_cyclone_xml(const DdsSettings& settings) {
     for (const auto& peer : settings.peers) xml << "<Peer address=\"" << xml_escape(peer) << "\"/>";
     xml << "</Peers>";
   }
-  xml << "</Discovery></Domain></CycloneDDS>";
+  xml << "</Discovery>";
+  if (settings.security.enabled()) write_security(xml, settings.security);
+  xml << "</Domain></CycloneDDS>";
   return xml.str();
 }
 
@@ -75,6 +110,12 @@ DdsSettings dds_settings_from_environment() {
   }
   if (const char* multicast = std::getenv("ROBOTD_DDS_MULTICAST"); multicast != nullptr) {
     settings.multicast = std::string_view(multicast) == "1" || std::string_view(multicast) == "true";
+  }
+  for (const auto& field : kSecurityFileFields) {
+    std::string variable = "ROBOTD_DDS_SECURITY_" + std::string(field.name);
+    std::transform(variable.begin(), variable.end(), variable.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    if (const char* path = std::getenv(variable.c_str()); path != nullptr) settings.security.*field.path = path;
   }
   return settings;
 }

@@ -1,10 +1,13 @@
 // Where robotd's DDS traffic goes. The default keeps every packet on loopback: interface
 // 127.0.0.1, no multicast, unicast discovery to 127.0.0.1. A robot on a network names its
-// interface (address or name) and either enables multicast or lists its peers.
+// interface (address or name) and either enables multicast or lists its peers. With DDS
+// Security files the participant authenticates, is access-controlled and encrypts its traffic.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "robotd/dds_security.hpp"
 
 namespace robotd::wire {
 
@@ -15,13 +18,18 @@ struct DdsSettings {
   std::vector<std::string> peers{"127.0.0.1"};  // unicast discovery peers (needed without multicast)
   int max_participant_index = 120;              // participants per host reachable by unicast discovery
   std::string cyclonedds_xml;                   // non-empty: used verbatim instead of the fields above
+  DdsSecurityFiles security;                    // any file named: DDS Security on, as the domain's <Security>
 };
 
-/// The Cyclone DDS configuration (XML) for `settings`.
+/// The Cyclone DDS configuration (XML) for `settings`. Cyclone applies it, DDS Security
+/// included, to the whole domain in this process: every participant of a process on one
+/// domain shares one identity.
 std::string to_cyclone_xml(const DdsSettings& settings);
 
 /// Defaults overridden by ROBOTD_DOMAIN_ID, ROBOTD_DDS_INTERFACE, ROBOTD_DDS_PEERS
-/// (comma-separated) and ROBOTD_DDS_MULTICAST=1, so tools follow the daemon's deployment.
+/// (comma-separated), ROBOTD_DDS_MULTICAST=1 and the DDS Security files
+/// ROBOTD_DDS_SECURITY_<FIELD> (IDENTITY_CA, IDENTITY_CERTIFICATE, PRIVATE_KEY, PERMISSIONS_CA,
+/// GOVERNANCE, PERMISSIONS), so tools follow the daemon's deployment.
 DdsSettings dds_settings_from_environment();
 
 }  // namespace robotd::wire

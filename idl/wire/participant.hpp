@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <dds/dds.h>
 
@@ -35,5 +36,9 @@ class Participant {
 
 /// "failed to X: <Cyclone's reason>" for a negative Cyclone return code.
 std::string dds_error(const char* what, dds_return_t code);
+
+/// The Error for a negative Cyclone return code from creating an entity for `topic`:
+/// kNotPermitted when DDS Security's access control refused it, kTransport otherwise.
+Error dds_failure(const char* what, std::string_view topic, dds_return_t code);
 
 }  // namespace robotd::wire

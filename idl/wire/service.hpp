@@ -43,10 +43,10 @@ class ServiceServer {
     if (!reply_topic_entity) return reply_topic_entity.error();
     const dds_entity_t reader =
         dds_create_reader(participant.handle(), request_topic_entity.value().get(), qos.get(), nullptr);
-    if (reader < 0) return make_error(ErrorCode::kTransport, dds_error("create a service request reader", reader));
+    if (reader < 0) return dds_failure("create a service request reader", request_topic(service), reader);
     const dds_entity_t writer =
         dds_create_writer(participant.handle(), reply_topic_entity.value().get(), qos.get(), nullptr);
-    if (writer < 0) return make_error(ErrorCode::kTransport, dds_error("create a service reply writer", writer));
+    if (writer < 0) return dds_failure("create a service reply writer", reply_topic(service), writer);
     return std::unique_ptr<ServiceServer>(
         new ServiceServer(std::string(service), std::move(request_topic_entity.value()),
                           std::move(reply_topic_entity.value()), Entity(reader), Entity(writer)));
@@ -115,10 +115,10 @@ class ServiceClient {
     if (!reply_topic_entity) return reply_topic_entity.error();
     const dds_entity_t writer =
         dds_create_writer(participant.handle(), request_topic_entity.value().get(), qos.get(), nullptr);
-    if (writer < 0) return make_error(ErrorCode::kTransport, dds_error("create a service request writer", writer));
+    if (writer < 0) return dds_failure("create a service request writer", request_topic(service), writer);
     const dds_entity_t reader =
         dds_create_reader(participant.handle(), reply_topic_entity.value().get(), qos.get(), nullptr);
-    if (reader < 0) return make_error(ErrorCode::kTransport, dds_error("create a service reply reader", reader));
+    if (reader < 0) return dds_failure("create a service reply reader", reply_topic(service), reader);
     dds_instance_handle_t guid = 0;
     dds_get_instance_handle(writer, &guid);
     return std::unique_ptr<ServiceClient>(

@@ -18,7 +18,7 @@ Result<Entity> create_topic(const Participant& participant, std::string_view nam
   const std::string topic_name(name);
   const dds_entity_t topic =
       dds_create_topic(participant.handle(), &Wire<T>::descriptor(), topic_name.c_str(), nullptr, nullptr);
-  if (topic < 0) return make_error(ErrorCode::kTransport, dds_error(("create topic " + topic_name).c_str(), topic));
+  if (topic < 0) return dds_failure("create a DDS topic", topic_name, topic);
   return Entity(topic);
 }
 
@@ -29,7 +29,7 @@ class TopicWriter {
     auto topic = create_topic<T>(participant, name);
     if (!topic) return topic.error();
     const dds_entity_t writer = dds_create_writer(participant.handle(), topic.value().get(), qos, nullptr);
-    if (writer < 0) return make_error(ErrorCode::kTransport, dds_error("create a DDS writer", writer));
+    if (writer < 0) return dds_failure("create a DDS writer", name, writer);
     return TopicWriter(std::move(topic.value()), Entity(writer));
   }
 
@@ -66,7 +66,7 @@ class TopicReader {
     auto topic = create_topic<T>(participant, name);
     if (!topic) return topic.error();
     const dds_entity_t reader = dds_create_reader(participant.handle(), topic.value().get(), qos, nullptr);
-    if (reader < 0) return make_error(ErrorCode::kTransport, dds_error("create a DDS reader", reader));
+    if (reader < 0) return dds_failure("create a DDS reader", name, reader);
     return TopicReader(std::move(topic.value()), Entity(reader));
   }
 

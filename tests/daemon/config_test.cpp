@@ -2,6 +2,8 @@
 // that caused it and what was expected, all problems at once.
 #include "config/config.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 
@@ -269,6 +271,47 @@ TEST(Config, MulticastWithoutPeersIsAccepted) {
   ASSERT_TRUE(config.ok()) << config.error().message;
   EXPECT_TRUE(config.value().dds.multicast);
   EXPECT_TRUE(config.value().dds.peers.empty());
+}
+
+TEST(Config, DdsSecurityNamesEveryKeyAtFault) {
+  json document = minimal_config();
+  document["dds"] = json{{"security", json{{"identity_ca", "/nonexistent/identity_ca.pem"}, {"password", "x"}}}};
+  const std::string errors = errors_of(document);
+  EXPECT_THAT(errors, HasSubstr("dds.security.identity_ca: no such file '/nonexistent/identity_ca.pem'; expected the "
+                                "identity CA's certificate (PEM)"));
+  EXPECT_THAT(errors, HasSubstr("dds.security.permissions: not set; expected this participant's permissions document"));
+  EXPECT_THAT(errors, HasSubstr("dds.security.password: unknown key"));
+  EXPECT_EQ(count_lines_starting_with(errors, "dds.security."), 7u);
+}
+
+TEST(Config, DdsSecurityWithItsSixFilesTurnsItOn) {
+  std::string directory = "/tmp/robotd-test-config-security-XXXXXX";
+  ASSERT_NE(mkdtemp(directory.data()), nullptr);
+  const json contents{{"identity_ca", "-----BEGIN CERTIFICATE-----"},
+                      {"identity_certificate", "-----BEGIN CERTIFICATE-----"},
+                      {"private_key", "-----BEGIN PRIVATE KEY-----"},
+                      {"permissions_ca", "-----BEGIN CERTIFICATE-----"},
+                      {"governance", "Content-Type: application/x-pkcs7-signature"},
+                      {"permissions", "Content-Type: application/x-pkcs7-signature"}};
+  json security = json::object();
+  for (const auto& [key, text] : contents.items()) {
+    security[key] = (std::filesystem::path(directory) / key).string();
+    std::ofstream(security[key].get<std::string>()) << text.get<std::string>() << "\n";
+  }
+  json document = minimal_config();
+  document["dds"] = json{{"security", security}};
+  const Result<Config> config = parse(document);
+  std::filesystem::remove_all(directory);
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  EXPECT_TRUE(config.value().dds.security.enabled());
+  EXPECT_EQ(config.value().dds.security.private_key, directory + "/private_key");
+  EXPECT_EQ(config.value().dds.security.governance, directory + "/governance");
+}
+
+TEST(Config, DdsSecurityIsOffWithoutItsObject) {
+  const Result<Config> config = parse(minimal_config());
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  EXPECT_FALSE(config.value().dds.security.enabled());
 }
 
 TEST(Config, ParamsMustBeAnObject) {

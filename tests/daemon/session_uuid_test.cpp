@@ -1,4 +1,5 @@
-// A session uuid is the session's capability: 128 random bits in the canonical text form.
+// A session uuid is the session's capability: an RFC 4122 version 4 uuid (122 random bits),
+// and logs show only its redacted prefix.
 #include "session/session_uuid.hpp"
 
 #include <regex>
@@ -11,8 +12,9 @@
 namespace robotd::session {
 namespace {
 
-TEST(SessionUuid, IsThirtySixCharactersOfLowercaseHexIn8_4_4_4_12Groups) {
-  static const std::regex canonical("[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}");
+TEST(SessionUuid, IsAVersion4UuidInLowercaseHex8_4_4_4_12Groups) {
+  // Version nibble 4; variant bits 10, so the fourth group starts with 8, 9, a or b.
+  static const std::regex canonical("[0-9a-f]{8}-[0-9a-f]{4}-4[0-9a-f]{3}-[89ab][0-9a-f]{3}-[0-9a-f]{12}");
   for (int i = 0; i < 100; ++i) {
     const std::string uuid = random_session_uuid();
     EXPECT_EQ(uuid.size(), 36u);
@@ -36,8 +38,25 @@ TEST(SessionUuid, EveryHexDigitPositionVaries) {
   }
   for (std::size_t c = 0; c < first.size(); ++c) {
     const bool is_dash = c == 8 || c == 13 || c == 18 || c == 23;
-    EXPECT_EQ(varied[c], !is_dash) << "position " << c;
+    const bool is_version = c == 14;
+    EXPECT_EQ(varied[c], !is_dash && !is_version) << "position " << c;
   }
+}
+
+TEST(RedactedUuid, ShowsOnlyTheFirstEightCharacters) {
+  const std::string uuid = random_session_uuid();
+  const std::string shown = redacted_uuid(uuid);
+  EXPECT_EQ(shown, uuid.substr(0, 8) + "…");
+  EXPECT_EQ(shown.find(uuid.substr(8)), std::string::npos);
+}
+
+TEST(RedactedUuid, ShortTextIsShownWhole) {
+  EXPECT_EQ(redacted_uuid("uuid-1"), "uuid-1");
+  EXPECT_EQ(redacted_uuid(""), "(empty)");
+}
+
+TEST(RedactedUuid, CharactersFromTheNetworkCannotForgeLogLines) {
+  EXPECT_EQ(redacted_uuid("ab\ncd\x1b[0m-0123456789"), "ab?cd??0…");
 }
 
 }  // namespace

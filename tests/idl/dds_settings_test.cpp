@@ -3,6 +3,7 @@
 #include "wire/dds_settings.hpp"
 
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -78,6 +79,38 @@ TEST(ToCycloneXml, ExplicitXmlOverridesEverything) {
   EXPECT_EQ(to_cyclone_xml(settings), settings.cyclonedds_xml);
 }
 
+TEST(ToCycloneXml, SecurityFilesBecomeTheDomainsSecuritySection) {
+  DdsSettings settings;
+  settings.security = DdsSecurityFiles{.identity_ca = "/pki/operator/identity_ca.pem",
+                                       .identity_certificate = "/pki/operator/identity_certificate.pem",
+                                       .private_key = "/pki/operator/private_key.pem",
+                                       .permissions_ca = "/pki/operator/permissions_ca.pem",
+                                       .governance = "/pki/operator/governance.p7s",
+                                       .permissions = "/pki/operator/permissions.p7s"};
+  const std::string xml = to_cyclone_xml(settings);
+  EXPECT_THAT(xml, HasSubstr("<Security><Authentication><Library path=\"dds_security_auth\" "
+                             "initFunction=\"init_authentication\" finalizeFunction=\"finalize_authentication\"/>"
+                             "<IdentityCA>file:/pki/operator/identity_ca.pem</IdentityCA>"
+                             "<IdentityCertificate>file:/pki/operator/identity_certificate.pem</IdentityCertificate>"
+                             "<PrivateKey>file:/pki/operator/private_key.pem</PrivateKey></Authentication>"));
+  EXPECT_THAT(xml, HasSubstr("<PermissionsCA>file:/pki/operator/permissions_ca.pem</PermissionsCA>"
+                             "<Governance>file:/pki/operator/governance.p7s</Governance>"
+                             "<Permissions>file:/pki/operator/permissions.p7s</Permissions></AccessControl>"));
+  EXPECT_THAT(xml, HasSubstr("<Cryptographic><Library path=\"dds_security_crypto\""));
+  EXPECT_THAT(xml, HasSubstr("</Security></Domain></CycloneDDS>"));
+}
+
+TEST(ToCycloneXml, RelativeSecurityPathsBecomeAbsolute) {
+  DdsSettings settings;
+  settings.security.identity_ca = "pki/identity_ca.pem";
+  EXPECT_THAT(to_cyclone_xml(settings),
+              HasSubstr("<IdentityCA>file:" + std::filesystem::current_path().string() + "/pki/identity_ca.pem<"));
+}
+
+TEST(ToCycloneXml, NoSecurityFilesNoSecuritySection) {
+  EXPECT_THAT(to_cyclone_xml(DdsSettings{}), Not(HasSubstr("Security")));
+}
+
 // The environment lets tools follow the daemon's deployment. Each CTest test is its own
 // process and no other thread runs while it changes the environment, so setenv is safe here.
 class ScopedEnv {
@@ -111,6 +144,20 @@ TEST(DdsSettingsFromEnvironment, ReadsDomainInterfacePeersAndMulticast) {
   EXPECT_EQ(settings.network_interface, "enp3s0");
   EXPECT_EQ(settings.peers, (std::vector<std::string>{"10.0.0.1", "10.0.0.2"}));
   EXPECT_TRUE(settings.multicast);
+}
+
+TEST(DdsSettingsFromEnvironment, ReadsTheDdsSecurityFiles) {
+  const ScopedEnv ca("ROBOTD_DDS_SECURITY_IDENTITY_CA", "/pki/operator/identity_ca.pem");
+  const ScopedEnv permissions("ROBOTD_DDS_SECURITY_PERMISSIONS", "/pki/operator/permissions.p7s");
+  const DdsSettings settings = dds_settings_from_environment();
+  EXPECT_TRUE(settings.security.enabled());
+  EXPECT_EQ(settings.security.identity_ca, "/pki/operator/identity_ca.pem");
+  EXPECT_EQ(settings.security.permissions, "/pki/operator/permissions.p7s");
+  EXPECT_TRUE(settings.security.private_key.empty());
+}
+
+TEST(DdsSettingsFromEnvironment, NoSecurityVariablesLeaveDdsSecurityOff) {
+  EXPECT_FALSE(dds_settings_from_environment().security.enabled());
 }
 
 TEST(Participant, RejectsDomainIdOutOfRange) {

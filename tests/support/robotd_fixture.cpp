@@ -5,9 +5,14 @@
 namespace robotd::testing {
 
 void RobotdTest::start_robotd(const nlohmann::json& config, std::vector<std::string> environment) {
+  start_robotd(config, std::move(environment), client_options(domain_.id()));
+}
+
+void RobotdTest::start_robotd(const nlohmann::json& config, std::vector<std::string> environment,
+                              const ClientOptions& options) {
   robotd_ =
       std::make_unique<RobotdProcess>(config.is_null() ? sim_arm_config(domain_.id()) : config, std::move(environment));
-  auto client = Client::connect(client_options(domain_.id()));
+  auto client = Client::connect(options);
   ASSERT_TRUE(client) << client.error().message;
   client_.emplace(std::move(client.value()));
   ASSERT_TRUE(robotd_->wait_ready(*client_)) << "robotd did not become ready:\n" << robotd_->log();

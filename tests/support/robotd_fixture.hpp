@@ -18,6 +18,8 @@ class RobotdTest : public ::testing::Test {
  protected:
   /// Starts robotd with `config` (default: the test arm) and waits until it is ready.
   void start_robotd(const nlohmann::json& config = nullptr, std::vector<std::string> environment = {});
+  /// The same, with client() connecting with `options` (e.g. a DDS Security identity).
+  void start_robotd(const nlohmann::json& config, std::vector<std::string> environment, const ClientOptions& options);
   void TearDown() override;
 
   Client& client() { return *client_; }

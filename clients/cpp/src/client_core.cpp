@@ -6,11 +6,19 @@
 namespace robotd::detail {
 namespace {
 
+// An endpoint DDS Security does not permit is kept as its error; any other failure is fatal.
+template <class Endpoint>
+Result<void> keep_denial(const Error& error, Permitted<Endpoint>& out) {
+  if (error.code != ErrorCode::kNotPermitted) return error;
+  out = Permitted<Endpoint>(error);
+  return {};
+}
+
 template <class Client>
-Result<void> make_client(const wire::Participant& participant, const char* service, std::unique_ptr<Client>& out) {
+Result<void> make_client(const wire::Participant& participant, const char* service, Permitted<Client>& out) {
   auto created = Client::create(participant, service);
-  if (!created) return created.error();
-  out = std::move(created.value());
+  if (!created) return keep_denial(created.error(), out);
+  out = Permitted<Client>(std::move(created.value()));
   return {};
 }
 
@@ -25,6 +33,7 @@ Result<std::shared_ptr<ClientCore>> ClientCore::create(const ClientOptions& opti
   settings.multicast = options.multicast;
   settings.peers = options.peers;
   settings.cyclonedds_xml = options.cyclonedds_xml;
+  settings.security = options.security;
   auto participant = wire::Participant::create(settings);
   if (!participant) return participant.error();
 
@@ -40,8 +49,11 @@ Result<std::shared_ptr<ClientCore>> ClientCore::create(const ClientOptions& opti
   }
   const auto qos = wire::reliable_qos(kCommandHistoryDepth);
   auto commands = wire::TopicWriter<ControlCommand>::create(core->participant, wire::kControlCommandTopic, qos.get());
-  if (!commands) return commands.error();
-  core->commands = std::make_unique<wire::TopicWriter<ControlCommand>>(std::move(commands.value()));
+  if (commands) {
+    core->commands = Permitted(std::make_unique<wire::TopicWriter<ControlCommand>>(std::move(commands.value())));
+  } else if (auto kept = keep_denial(commands.error(), core->commands); !kept) {
+    return kept.error();
+  }
   core->dispatcher = std::make_shared<Dispatcher>(core->participant);
   return core;
 }

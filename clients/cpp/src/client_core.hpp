@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "dispatcher.hpp"
+#include "permitted.hpp"
 #include "robotd/client/options.hpp"
 #include "robotd/client/subscription.hpp"
 #include "robotd/messages.hpp"
@@ -35,14 +36,14 @@ class ClientCore {
 
   ClientOptions options;
   wire::Participant participant;
-  std::unique_ptr<wire::ServiceClient<RequestControlRequest, RequestControlResponse>> request_control;
-  std::unique_ptr<wire::ServiceClient<ReleaseControlRequest, ReleaseControlResponse>> release_control;
-  std::unique_ptr<wire::ServiceClient<GetAvailableMotorsRequest, GetAvailableMotorsResponse>> available_motors;
-  std::unique_ptr<wire::ServiceClient<ResetZeroRequest, ResetZeroResponse>> reset_zero;
-  std::unique_ptr<wire::ServiceClient<EstopRequest, EstopResponse>> estop;
-  std::unique_ptr<wire::ServiceClient<ListDevicesRequest, ListDevicesResponse>> list_devices;
-  std::unique_ptr<wire::ServiceClient<DeviceCallRequest, DeviceCallResponse>> device_call;
-  std::unique_ptr<wire::TopicWriter<ControlCommand>> commands;
+  Permitted<wire::ServiceClient<RequestControlRequest, RequestControlResponse>> request_control;
+  Permitted<wire::ServiceClient<ReleaseControlRequest, ReleaseControlResponse>> release_control;
+  Permitted<wire::ServiceClient<GetAvailableMotorsRequest, GetAvailableMotorsResponse>> available_motors;
+  Permitted<wire::ServiceClient<ResetZeroRequest, ResetZeroResponse>> reset_zero;
+  Permitted<wire::ServiceClient<EstopRequest, EstopResponse>> estop;
+  Permitted<wire::ServiceClient<ListDevicesRequest, ListDevicesResponse>> list_devices;
+  Permitted<wire::ServiceClient<DeviceCallRequest, DeviceCallResponse>> device_call;
+  Permitted<wire::TopicWriter<ControlCommand>> commands;
   std::shared_ptr<Dispatcher> dispatcher;
 
  private:

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "robotd/driver/json_reader.hpp"
+#include "wire/dds_security.hpp"
 
 namespace robotd::config {
 namespace {
@@ -44,6 +45,14 @@ void read_daemon(JsonReader& reader, DaemonConfig& daemon) {
   reader.finish();
 }
 
+// Present = DDS Security on. Each file is checked here, so robotd refuses to start naming the
+// file at fault rather than Cyclone failing later without naming any.
+void read_dds_security(JsonReader& reader, DdsSecurityFiles& files) {
+  for (const auto& field : wire::kSecurityFileFields) files.*field.path = reader.string_or(field.name, "");
+  for (const auto& problem : wire::find_security_file_problems(files)) reader.error(problem.field, problem.message);
+  reader.finish();
+}
+
 void read_dds(JsonReader& reader, wire::DdsSettings& dds) {
   dds.domain_id = static_cast<int>(reader.integer_or("domain_id", dds.domain_id, 0, 230));
   dds.network_interface = reader.string_or("interface", dds.network_interface);
@@ -52,6 +61,10 @@ void read_dds(JsonReader& reader, wire::DdsSettings& dds) {
   dds.max_participant_index =
       static_cast<int>(reader.integer_or("max_participant_index", dds.max_participant_index, 1, 1000));
   dds.cyclonedds_xml = reader.string_or("cyclonedds_xml", "");
+  if (auto security = reader.object("security")) read_dds_security(*security, dds.security);
+  if (reader.has("security") && !dds.cyclonedds_xml.empty()) {
+    reader.error("security", "cannot be combined with cyclonedds_xml (put a <Security> section into that XML instead)");
+  }
   if (!dds.multicast && dds.peers.empty() && dds.cyclonedds_xml.empty()) {
     reader.error("peers", "must list at least one peer when multicast is false (use [\"127.0.0.1\"] for one host)");
   }

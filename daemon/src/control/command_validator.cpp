@@ -61,8 +61,8 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
                          ValidatedCommand& out) {
   out = ValidatedCommand{};
   if (!command.device.empty() && command.device != session.device) {
-    return reject(Rejection::kWrongDevice, "command names device '" + command.device + "' but session " + command.uuid +
-                                               " is on device '" + std::string(session.device) + "'");
+    return reject(Rejection::kWrongDevice, "command names device '" + command.device +
+                                               "' but its session is on device '" + std::string(session.device) + "'");
   }
 
   const std::size_t count = command.motor_ids.size();
@@ -116,8 +116,8 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
     for (const auto id : command.motor_ids) {
       if (!session.motors.test(static_cast<std::size_t>(id))) foreign.push_back(id);
     }
-    return reject(Rejection::kNotOwner, "session " + command.uuid + " does not own motor(s) " + join_ids(foreign) +
-                                            " of '" + model.name + "'");
+    return reject(Rejection::kNotOwner,
+                  "the session does not own motor(s) " + join_ids(foreign) + " of '" + model.name + "'");
   }
   for (const auto& array : arrays) {
     for (std::size_t i = 0; i < array.values->size(); ++i) {

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "rt/monotonic_clock.hpp"
+#include "session/session_uuid.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
 
@@ -60,7 +61,7 @@ void CommandIntake::reject(std::size_t device, control::Rejection reason, const 
   counters_[device]->count_rejection(reason);
   log_.warn(devices_[device]->model().name + "/" + control::to_string(reason),
             "rejected command on '" + devices_[device]->model().name + "' (" + control::to_string(reason) +
-                "): " + detail + " [uuid " + command.uuid + "]");
+                "): " + detail + " [session " + session::redacted_uuid(command.uuid) + "]");
 }
 
 void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
@@ -71,13 +72,13 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
     std::size_t device = devices_.size();
     if (auto named = sessions_.resolve_device(command.device)) device = named.value();
     if (device == devices_.size()) {
-      log_.warn("unattributed",
-                "rejected command: uuid '" + command.uuid + "' is not an active session and names no known device");
+      log_.warn("unattributed", "rejected command: session " + session::redacted_uuid(command.uuid) +
+                                    " is not active and the command names no known device");
       return;
     }
     counters_[device]->received.fetch_add(1, std::memory_order_relaxed);
     reject(device, control::Rejection::kUnknownSession, command,
-           "uuid '" + command.uuid + "' is not an active session (request_control first; sessions end on timeout)");
+           "no active session has this uuid (request_control first; sessions end on timeout)");
     return;
   }
 

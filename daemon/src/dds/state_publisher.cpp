@@ -6,6 +6,7 @@
 
 #include "dds/yesense_imu.hpp"
 #include "rt/monotonic_clock.hpp"
+#include "session/session_uuid.hpp"
 
 namespace robotd::dds {
 namespace {
@@ -117,8 +118,8 @@ void StatePublisher::handle(const device::LoopEvent& event) {
       const auto ended = sessions_.session_ended(device_index_, event.slot, event.generation);
       if (event.type == device::LoopEvent::Type::kSessionTimedOut) {
         spdlog::warn("device '{}': session {} of node '{}' timed out after {} ms without a command; motors {}", name,
-                     ended ? ended->uuid : "?", ended ? ended->node_name : "?", event.silence_ns / rt::kNsPerMs,
-                     to_string(event.behavior));
+                     ended ? session::redacted_uuid(ended->uuid) : "?", ended ? ended->node_name : "?",
+                     event.silence_ns / rt::kNsPerMs, to_string(event.behavior));
       } else {
         spdlog::info("device '{}': session in slot {} {}; motors {}", name, event.slot, session_end_text(event.type),
                      to_string(event.behavior));

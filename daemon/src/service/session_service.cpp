@@ -98,7 +98,8 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
       response.message +=
           " (" + std::string(to_string(record.requested_behavior)) + " is not supported by this device)";
     }
-    spdlog::info("session {} granted to node '{}': {}", record.uuid, record.node_name, response.message);
+    spdlog::info("session {} granted to node '{}': {}", session::redacted_uuid(record.uuid), record.node_name,
+                 response.message);
   }
   on_change_();
   return response;
@@ -129,14 +130,14 @@ ReleaseControlResponse SessionService::release_control(const ReleaseControlReque
     if (!device.channel().post(event)) {
       // The loop is not draining its events; its timeout still ends the session.
       spdlog::error("device '{}': release of session {} could not be queued; it will time out instead", record.device,
-                    record.uuid);
+                    session::redacted_uuid(record.uuid));
     }
     response.success = true;
     response.applied_behavior = applied;
     response.message = "released " + std::to_string(record.motor_ids.size()) + " motor(s) of '" + record.device +
                        "' with " + std::string(to_string(applied));
-    spdlog::info("session {} of node '{}' released by '{}': {}", record.uuid, record.node_name, request.node_name,
-                 response.message);
+    spdlog::info("session {} of node '{}' released by '{}': {}", session::redacted_uuid(record.uuid), record.node_name,
+                 request.node_name, response.message);
   }
   on_change_();
   return response;

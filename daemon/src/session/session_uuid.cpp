@@ -1,11 +1,17 @@
 #include "session/session_uuid.hpp"
 
 #include <array>
+#include <cctype>
 #include <cstdint>
 #include <stdexcept>
 #include <sys/random.h>
 
 namespace robotd::session {
+namespace {
+
+constexpr std::size_t kShownCharacters = 8;
+
+}  // namespace
 
 std::string random_session_uuid() {
   std::array<std::uint8_t, 16> bytes{};
@@ -15,6 +21,9 @@ std::string random_session_uuid() {
     if (n < 0) throw std::runtime_error("getrandom failed: cannot create a session uuid");
     filled += static_cast<std::size_t>(n);
   }
+  // RFC 4122 section 4.4: version 4 in the high nibble of byte 6, variant 10 in the top bits of byte 8.
+  bytes[6] = static_cast<std::uint8_t>((bytes[6] & 0x0FU) | 0x40U);
+  bytes[8] = static_cast<std::uint8_t>((bytes[8] & 0x3FU) | 0x80U);
   static constexpr char kHex[] = "0123456789abcdef";
   std::string text;
   text.reserve(36);
@@ -24,6 +33,15 @@ std::string random_session_uuid() {
     text += kHex[bytes[i] & 0x0FU];
   }
   return text;
+}
+
+std::string redacted_uuid(std::string_view uuid) {
+  if (uuid.empty()) return "(empty)";
+  std::string shown;
+  for (const char c : uuid.substr(0, kShownCharacters)) {
+    shown += std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' ? c : '?';
+  }
+  return uuid.size() > kShownCharacters ? shown + "…" : shown;
 }
 
 }  // namespace robotd::session

@@ -14,6 +14,7 @@ enum class ErrorCode {
   kRefused,          // robotd answered and said no; the message says why
   kInvalidArgument,  // the caller passed something malformed; nothing was sent
   kTransport,        // the DDS layer failed
+  kNotPermitted,     // DDS Security refused it: this participant's identity or permissions do not allow it
 };
 
 const char* to_string(ErrorCode code);

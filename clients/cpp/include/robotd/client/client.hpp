@@ -24,7 +24,9 @@ namespace robotd {
 class Client {
  public:
   /// Joins robotd's DDS domain. Succeeds even if robotd is not running; calls then fail
-  /// with ErrorCode::kNotAvailable after the service timeout.
+  /// with ErrorCode::kNotAvailable after the service timeout. With DDS Security
+  /// (options.security), a call or publish the identity's permissions do not grant fails at
+  /// once with ErrorCode::kNotPermitted; a read-only identity still connects and subscribes.
   static Result<Client> connect(const ClientOptions& options = ClientOptions::from_environment());
 
   Client(Client&&) noexcept;
