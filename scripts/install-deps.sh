@@ -14,6 +14,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   rt-tests python3 systemd
   clang-format clang-tidy valgrind
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "rt/monotonic_clock.hpp"
+#include "service/call_arguments.hpp"
 
 namespace robotd::service {
 namespace {
@@ -181,15 +182,9 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
 DeviceCallResponse DeviceServices::device_call(const DeviceCallRequest& request) {
   auto index = sessions_.resolve_device(request.device);
   if (!index) return call_failed(index.error().message);
-  nlohmann::json args = nlohmann::json::object();
-  if (!request.args_json.empty()) {
-    try {
-      args = nlohmann::json::parse(request.args_json);
-    } catch (const nlohmann::json::parse_error& e) {
-      return call_failed("args_json is not valid JSON (" + std::string(e.what()) + "); expected an object");
-    }
-    if (!args.is_object()) return call_failed("args_json must be a JSON object, got " + args.dump());
-  }
+  const auto parsed = parse_call_arguments(request.args_json);
+  if (!parsed) return call_failed(parsed.error().message);
+  const nlohmann::json& args = parsed.value();
   for (const auto& op : daemon_ops()) {
     if (op.substr(0, op.find(':')) == request.op) return daemon_op(index.value(), request.op, args);
   }
@@ -197,7 +192,8 @@ DeviceCallResponse DeviceServices::device_call(const DeviceCallRequest& request)
   const std::lock_guard lock(*call_mutexes_[index.value()]);
   auto result = device.driver().call(request.op, args);
   if (!result) return call_failed("'" + device.model().name + "' " + request.op + ": " + result.error().message);
-  return DeviceCallResponse{true, "ok", result.value().dump()};
+  // A plugin's text that is not UTF-8 would make dump() throw and end robotd: replace it.
+  return DeviceCallResponse{true, "ok", result.value().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)};
 }
 
 DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::string& op, const nlohmann::json& args) {

@@ -236,7 +236,7 @@ std::optional<nlohmann::json> parse_json_with_comments(std::string_view text, st
                                                        std::vector<std::string>& errors) {
   try {
     return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for a number beyond a double
     errors.push_back(std::string(origin) + ": invalid JSON: " + e.what());
     return std::nullopt;
   }

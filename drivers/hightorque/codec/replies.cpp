@@ -114,7 +114,10 @@ bool decode_model(wire::ConstBytes bytes, ModelName& model) {
   const std::size_t length = bytes[1];
   if (length == 0 || bytes.size() < kModelHeaderBytes + length) return false;
   const auto text = bytes.subspan(kModelHeaderBytes, std::min(length, kMaxModelChars));
-  std::copy(text.begin(), text.end(), model.text.begin());
+  // The name ends up in JSON and logs: bytes that are not printable ASCII read as '?'.
+  std::transform(text.begin(), text.end(), model.text.begin(), [](std::uint8_t byte) {
+    return byte == 0 || (byte >= 0x20 && byte < 0x7F) ? static_cast<char>(byte) : '?';
+  });
   model.text[text.size()] = '\0';
   return true;
 }

@@ -132,7 +132,7 @@ std::uint8_t pack_bits(const std::array<bool, 8>& bits) {
 
 std::array<bool, 8> unpack_bits(std::uint8_t byte) {
   std::array<bool, 8> bits{};
-  for (std::size_t k = 0; k < bits.size(); ++k) bits[k] = ((byte >> (7 - k)) & 1U) != 0;
+  for (std::size_t k = 0; k < bits.size(); ++k) bits[k] = ((static_cast<unsigned>(byte) >> (7 - k)) & 1U) != 0;
   return bits;
 }
 

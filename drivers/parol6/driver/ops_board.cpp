@@ -52,7 +52,7 @@ const char* command_text(std::uint8_t code) {
 
 nlohmann::json joint_bits(std::uint8_t byte) {
   nlohmann::json joints = nlohmann::json::array();
-  for (int j = 0; j < kJoints; ++j) joints.push_back(((byte >> (7 - j)) & 1U) != 0);
+  for (int j = 0; j < kJoints; ++j) joints.push_back(((static_cast<unsigned>(byte) >> (7 - j)) & 1U) != 0);
   return joints;
 }
 

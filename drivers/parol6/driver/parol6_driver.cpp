@@ -20,7 +20,6 @@ using driver::monotonic_now_ns;
 
 using namespace std::chrono_literals;
 
-constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::size_t kTrajectoryCapacity = 12'000;  // 120 s at 100 Hz
 constexpr std::size_t kSettleFrames = 30;            // a finished move holds its end point this long
 constexpr int kMaxReadsPerTick = 8;                  // 4 KiB: far more than a 10 ms exchange carries

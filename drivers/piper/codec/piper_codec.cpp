@@ -717,7 +717,10 @@ std::optional<std::string> software_version(const std::string& firmware_text) {
   constexpr std::size_t kVersionLength = 8;  // "S-V1.8-2"; the SDK takes 8 characters too
   const std::size_t at = firmware_text.find("S-V");
   if (at == std::string::npos || firmware_text.size() - at < kVersionLength) return std::nullopt;
-  return firmware_text.substr(at, kVersionLength);
+  // The bytes come from the arm and end up in JSON and logs: keep the printable ones.
+  const std::string_view version = std::string_view(firmware_text).substr(at, kVersionLength);
+  const auto end = std::find_if(version.begin(), version.end(), [](char c) { return c < 0x20 || c > 0x7E; });
+  return std::string(version.begin(), end);
 }
 
 MitLayout mit_layout_for(const std::string& software_version) {

@@ -365,8 +365,8 @@ std::array<CanMessage, 3> encode_joint_targets(const std::array<double, kArmJoin
 std::array<CanMessage, 3> encode_end_pose_feedback(const CartesianPose& pose);
 std::array<CanMessage, 3> encode_joint_feedback(const std::array<double, kArmJoints>& positions_rad);
 
-/// Extracts the software version ("S-V1.8-2") from the concatenated 0x4AF reply text; nullopt
-/// if the text holds none yet.
+/// Extracts the software version ("S-V1.8-2") from the concatenated 0x4AF reply text, cut at
+/// the first character that is not printable ASCII; nullopt if the text holds none yet.
 std::optional<std::string> software_version(const std::string& firmware_text);
 /// The MIT layout a software version implies: kTorque12 from S-V1.8-8 on.
 MitLayout mit_layout_for(const std::string& software_version);

@@ -58,7 +58,6 @@ std::string_view help_of(std::string_view op) {
   return spec == kOps.end() ? std::string_view{} : spec->help;
 }
 
-/// A missing args value means no arguments.
 }  // namespace
 
 std::vector<driver::OpDescription> op_descriptions() {

@@ -14,8 +14,6 @@ struct OpSpec {
   std::string_view help;
 };
 
-constexpr std::string_view kBlockHelp = R"("block": bool (default true), "timeout_s": number (default 60))";
-
 constexpr std::array<OpSpec, 33> kOps{{
     {"movej", R"({"joints_rad": [dof], "v": 1..100 %, "r": 0..100 %, "trajectory_connect": bool, "block", )"
               R"("timeout_s"}: planned joint move (movej))"},

@@ -101,7 +101,7 @@ nlohmann::json Controller::handle(std::string_view line, ClientId client, std::i
   nlohmann::json message;
   try {
     message = nlohmann::json::parse(line);
-  } catch (const nlohmann::json::parse_error& error) {
+  } catch (const nlohmann::json::exception& error) {  // parse_error, or out_of_range for 1e400
     ++malformed_;
     return error_reply("", std::string("malformed JSON: ") + error.what() + " in " + quoted_start(line));
   }

@@ -85,7 +85,7 @@ Result<Version> parse_version(ByteView data) {
   const auto type = version_number(text, fields, 1, "device type");
   if (!type) return type.error();
   const auto field = [&fields](std::size_t index) {
-    return index < fields.size() ? std::string(fields[index]) : std::string();
+    return index < fields.size() ? printable(fields[index]) : std::string();
   };
   Version version{.axes = axes.value(),
                   .type = type.value(),
@@ -110,8 +110,8 @@ Result<SerialNumbers> parse_robot_sn(ByteView data) {
   const auto robot_end = std::min(text.find('\0'), text.size());
   // A robot SN that fills all 40 bytes leaves no room for the control box's.
   const std::string_view rest = text.substr(std::min(robot_end + 1, text.size()));
-  return SerialNumbers{.robot_sn = std::string(trimmed(text.substr(0, robot_end))),
-                       .control_box_sn = std::string(trimmed(rest.substr(0, rest.find('\0'))))};
+  return SerialNumbers{.robot_sn = printable(trimmed(text.substr(0, robot_end))),
+                       .control_box_sn = printable(trimmed(rest.substr(0, rest.find('\0'))))};
 }
 
 Bytes encode_robot_sn(const SerialNumbers& serials) {

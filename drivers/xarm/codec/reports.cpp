@@ -17,7 +17,6 @@ namespace {
 
 constexpr std::size_t kSizeBytes = 4;
 constexpr std::size_t kMinReportBytes = 8;
-constexpr std::size_t kWrenchBytes = 6 * kF32Bytes;
 
 struct KindInfo {
   ReportKind kind;
@@ -41,7 +40,6 @@ const KindInfo& info(ReportKind kind) {
 namespace basic {
 constexpr std::size_t kStateMode = 4;
 constexpr std::size_t kPosition = 7;
-constexpr std::size_t kEffort = 59;
 constexpr std::size_t kForceTorqueFiltered = 87;  // real, 135 bytes
 constexpr std::size_t kForceTorqueRaw = 111;
 // Normal, from here in order: masks, codes, TCP offset, payload, sensitivities, gravity direction.

@@ -325,7 +325,7 @@ Result<double> parse_scalar_param(std::uint8_t reg, ByteView params);
 
 // ---- Reply data (both sides) ---------------------------------------------------------------
 // parse_* take a Reply's data; kInvalidArgument names the register and the sizes. encode_* make
-// the data a simulator sends.
+// the data a simulator sends. Text fields come back as printable ASCII, other bytes as '?'.
 
 struct Version {
   int axes = 0;
