@@ -69,9 +69,8 @@ Client::~Client() = default;
 const ClientOptions& Client::options() const { return core_->options; }
 
 Result<std::vector<DeviceInfo>> Client::list_devices() {
-  auto service = core_->list_devices.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(ListDevicesRequest{core_->options.node_name}, core_->options.service_timeout);
+  auto response =
+      core_->list_devices.call(ListDevicesRequest{core_->options.node_name}, core_->options.service_timeout);
   if (!response) return response.error();
   return std::move(response.value().devices);
 }
@@ -86,9 +85,7 @@ Result<Session> Client::request_control(const SessionRequest& request) {
   wire_request.timeout_ms = static_cast<std::int32_t>(request.timeout.count());
   wire_request.default_kp = request.default_kp;
   wire_request.default_kd = request.default_kd;
-  auto service = core_->request_control.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(wire_request, core_->options.service_timeout);
+  auto response = core_->request_control.call(wire_request, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/request_control", response.value().message);
   return Session(core_, response.value().uuid, response.value().device, request, response.value().motor_ids,
@@ -96,40 +93,32 @@ Result<Session> Client::request_control(const SessionRequest& request) {
 }
 
 Result<ReleaseControlResponse> Client::release_control(const std::string& uuid, Behavior release_mode) {
-  auto service = core_->release_control.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(ReleaseControlRequest{core_->options.node_name, uuid, release_mode},
-                                        core_->options.service_timeout);
+  auto response = core_->release_control.call(ReleaseControlRequest{core_->options.node_name, uuid, release_mode},
+                                              core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/release_control", response.value().message);
   return response;
 }
 
 Result<GetAvailableMotorsResponse> Client::available_motors(const std::string& device) {
-  auto service = core_->available_motors.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(GetAvailableMotorsRequest{core_->options.node_name, device},
-                                        core_->options.service_timeout);
+  auto response = core_->available_motors.call(GetAvailableMotorsRequest{core_->options.node_name, device},
+                                               core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/get_available_motors", response.value().message);
   return response;
 }
 
 Result<EstopResponse> Client::estop(const std::string& device, const std::string& reason) {
-  auto service = core_->estop.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(EstopRequest{core_->options.node_name, device, true, reason},
-                                        core_->options.service_timeout);
+  auto response =
+      core_->estop.call(EstopRequest{core_->options.node_name, device, true, reason}, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/estop", response.value().message);
   return response;
 }
 
 Result<EstopResponse> Client::reset_estop(const std::string& device) {
-  auto service = core_->estop.get();
-  if (!service) return service.error();
   auto response =
-      service.value()->call(EstopRequest{core_->options.node_name, device, false, ""}, core_->options.service_timeout);
+      core_->estop.call(EstopRequest{core_->options.node_name, device, false, ""}, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/estop", response.value().message);
   return response;
@@ -137,10 +126,9 @@ Result<EstopResponse> Client::reset_estop(const std::string& device) {
 
 Result<void> Client::reset_zero(const std::string& device, const std::vector<std::int32_t>& motor_ids,
                                 std::chrono::milliseconds timeout) {
-  auto service = core_->reset_zero.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(ResetZeroRequest{device, motor_ids, static_cast<std::int32_t>(timeout.count())},
-                                        core_->options.service_timeout, timeout + core_->options.service_timeout);
+  auto response =
+      core_->reset_zero.call(ResetZeroRequest{device, motor_ids, static_cast<std::int32_t>(timeout.count())},
+                             core_->options.service_timeout, timeout + core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/reset_zero", response.value().message);
   return {};
@@ -148,10 +136,8 @@ Result<void> Client::reset_zero(const std::string& device, const std::vector<std
 
 Result<std::string> Client::device_call(const std::string& device, const std::string& op, const std::string& args_json,
                                         std::chrono::milliseconds timeout) {
-  auto service = core_->device_call.get();
-  if (!service) return service.error();
   auto response =
-      service.value()->call(DeviceCallRequest{device, op, args_json}, core_->options.service_timeout, timeout);
+      core_->device_call.call(DeviceCallRequest{device, op, args_json}, core_->options.service_timeout, timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/device_call " + op, response.value().message);
   return std::move(response.value().result_json);
@@ -220,11 +206,7 @@ Result<SessionStatus> Client::session_status(std::chrono::milliseconds timeout) 
                     "no /session_status within " + std::to_string(timeout.count()) + " ms: is robotd running?");
 }
 
-Result<void> Client::publish(const ControlCommand& command) {
-  auto writer = core_->commands.get();
-  if (!writer) return writer.error();
-  return writer.value()->write(command);
-}
+Result<void> Client::publish(const ControlCommand& command) { return core_->commands.write(command); }
 
 Result<PolicyDataPublisher> Client::policy_data_publisher() {
   const auto qos = wire::reliable_qos(kStateHistoryDepth);

@@ -17,10 +17,17 @@ class Permitted {
   explicit Permitted(std::unique_ptr<Endpoint> endpoint) : endpoint_(std::move(endpoint)) {}
   explicit Permitted(Error denied) : denied_(std::move(denied)) {}
 
-  /// The endpoint, or why it does not exist.
-  Result<Endpoint*> get() const {
-    if (endpoint_) return endpoint_.get();
-    return denied_;
+  /// The endpoint's call(...) for a service client, or why it may not be made.
+  template <class... Args, class E = Endpoint>
+  auto call(Args&&... args) const -> decltype(std::declval<E&>().call(std::forward<Args>(args)...)) {
+    if (!endpoint_) return denied_;
+    return endpoint_->call(std::forward<Args>(args)...);
+  }
+  /// The endpoint's write(...) for a topic writer, or why it may not be made.
+  template <class Sample>
+  Result<void> write(const Sample& sample) const {
+    if (!endpoint_) return denied_;
+    return endpoint_->write(sample);
   }
 
  private:

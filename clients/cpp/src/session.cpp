@@ -65,9 +65,7 @@ Result<void> Session::command(const Command& command) {
   message.kd = command.kd;
   message.torques = command.torques;
   message.sent_steady_ns = clock_ns(CLOCK_MONOTONIC);
-  auto writer = core_->commands.get();
-  if (!writer) return writer.error();
-  auto written = writer.value()->write(message);
+  auto written = core_->commands.write(message);
   if (written) last_sent_ = std::chrono::steady_clock::now();
   return written;
 }
@@ -87,10 +85,8 @@ std::chrono::milliseconds Session::time_left() const {
 Result<ReleaseControlResponse> Session::release(Behavior release_mode) {
   if (!active()) return make_error(ErrorCode::kInvalidArgument, "this session has already been released");
   auto core = std::move(core_);
-  auto service = core->release_control.get();
-  if (!service) return service.error();
-  auto response = service.value()->call(ReleaseControlRequest{core->options.node_name, uuid_, release_mode},
-                                        core->options.service_timeout);
+  auto response = core->release_control.call(ReleaseControlRequest{core->options.node_name, uuid_, release_mode},
+                                             core->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) {
     return make_error(ErrorCode::kRefused, "robotd refused /release_control: " + response.value().message);
