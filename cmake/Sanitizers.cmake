@@ -19,12 +19,20 @@ endif()
 if(NOT ROBOTD_SANITIZE MATCHES "^(address,undefined|undefined,address|address|undefined|thread)$")
   message(FATAL_ERROR "ROBOTD_SANITIZE=${ROBOTD_SANITIZE}: expected empty, address,undefined or thread")
 endif()
-if(ROBOTD_FUZZ)
-  message(FATAL_ERROR "ROBOTD_SANITIZE and ROBOTD_FUZZ cannot be combined: a fuzz build already uses "
-                      "AddressSanitizer and UndefinedBehaviorSanitizer")
+if(ROBOTD_FUZZ AND ROBOTD_SANITIZE STREQUAL "thread")
+  message(FATAL_ERROR "ROBOTD_FUZZ builds with AddressSanitizer, which ThreadSanitizer cannot join: "
+                      "use ROBOTD_SANITIZE=address,undefined (or empty) with ROBOTD_FUZZ")
 endif()
 
 add_compile_options(-fsanitize=${ROBOTD_SANITIZE} -fno-omit-frame-pointer)
+# Reports need files and lines, not variables, and -O1 keeps stack traces whole: together they
+# halve the build (GCC at -O2 -g takes 16 s for an end-to-end test file under ASan, clang at
+# -O1 with line tables 6 s). They come after the build type's -O2 -g, so they win.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+  add_compile_options(-O1 -gline-tables-only)
+else()
+  add_compile_options(-O1 -g1)
+endif()
 add_link_options(-fsanitize=${ROBOTD_SANITIZE})
 if(ROBOTD_SANITIZE MATCHES "undefined")
   add_compile_options(-fno-sanitize-recover=undefined)

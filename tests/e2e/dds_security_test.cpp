@@ -132,7 +132,7 @@ TEST_F(DdsSecurityTest, ViewerReadsJointStatesButMayNotCommand) {
   EXPECT_NE(stolen.find("rt/control_command: not allowed by DDS Security"), std::string::npos) << stolen;
 
   EXPECT_EQ(device_status().commands.received, 0U);
-  for (const auto& joint : sim_state()["joints"]) EXPECT_EQ(joint["command"], "none") << joint.dump();
+  for (const auto& joint : sim_joints()) EXPECT_EQ(joint["command"], "none") << joint.dump();
 }
 
 // Neither a participant without DDS Security nor one whose CA robotd does not trust gets a

@@ -89,7 +89,7 @@ TEST_F(SafetyTest, BadCommandsAreRejectedCountedAndNeverMoveTheArm) {
   EXPECT_EQ(counters.rejected_total(), 7U);
 
   // Nothing reached the driver: it was never commanded, and nothing moved.
-  for (const auto& joint : sim_state()["joints"]) EXPECT_EQ(joint["command"], "none") << joint.dump();
+  for (const auto& joint : sim_joints()) EXPECT_EQ(joint["command"], "none") << joint.dump();
   const JointState after = joint_state();
   for (std::size_t j = 0; j < after.position.size(); ++j) EXPECT_NEAR(after.position[j], before.position[j], 1e-6);
 

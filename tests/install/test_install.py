@@ -68,8 +68,11 @@ class InstallTest(unittest.TestCase):
 
     def test_a_separate_project_builds_against_the_package_and_talks_to_the_installed_daemon(self):
         with tempfile.TemporaryDirectory(prefix="robotd-consumer-") as build:
+            # A sanitized librobotd_client calls into the sanitizer runtime, which the program links.
+            flags = f"-fsanitize={ARGS.sanitize}" if ARGS.sanitize else ""
             configure = subprocess.run(["cmake", "-S", str(Path(__file__).parent / "consumer"), "-B", build,
-                                        f"-DCMAKE_PREFIX_PATH={self.prefix}"], capture_output=True, text=True)
+                                        f"-DCMAKE_PREFIX_PATH={self.prefix}", f"-DCMAKE_CXX_COMPILER={ARGS.cxx_compiler}",
+                                        f"-DCMAKE_CXX_FLAGS={flags}"], capture_output=True, text=True)
             self.assertEqual(configure.returncode, 0, configure.stdout + configure.stderr)
             compile_ = subprocess.run(["cmake", "--build", build], capture_output=True, text=True)
             self.assertEqual(compile_.returncode, 0, compile_.stdout + compile_.stderr)
@@ -111,5 +114,8 @@ if __name__ == "__main__":
     parser.add_argument("--build-dir", required=True)
     parser.add_argument("--prefix", required=True)
     parser.add_argument("--libdir", required=True)
+    parser.add_argument("--cxx-compiler", required=True, help="the compiler robotd was built with")
+    parser.add_argument("--sanitize", default="",
+                        help="the sanitizers robotd was built with (ROBOTD_SANITIZE): the consumer needs them too")
     ARGS, rest = parser.parse_known_args()
     unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)

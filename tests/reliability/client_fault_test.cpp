@@ -82,7 +82,7 @@ TEST_F(ClientFaultTest, AFrozenClientsSessionFallsBackAndItsCommandsAreRejectedW
   EXPECT_GE(fallback_ms, kTimeoutMs - 5);
   EXPECT_LT(fallback_ms, kTimeoutMs + 150);
   EXPECT_TRUE(sessions_empty());
-  for (const auto& joint : sim_state()["joints"]) {
+  for (const auto& joint : sim_joints()) {
     EXPECT_EQ(joint["command"], "impedance") << joint.dump();
     EXPECT_EQ(joint["kp"], 0.0) << "DAMPING leaves no stiffness: " << joint.dump();
   }
@@ -94,7 +94,7 @@ TEST_F(ClientFaultTest, AFrozenClientsSessionFallsBackAndItsCommandsAreRejectedW
   const auto rejected = after.rejected_unknown_session - before.rejected_unknown_session;
   EXPECT_GT(rejected, 200U) << "the woken client's commands should be rejected and counted";
   EXPECT_EQ(after.accepted, before.accepted);
-  for (const auto& joint : sim_state()["joints"]) EXPECT_EQ(joint["kp"], 0.0) << "woke and moved: " << joint.dump();
+  for (const auto& joint : sim_joints()) EXPECT_EQ(joint["kp"], 0.0) << "woke and moved: " << joint.dump();
   std::cout << "[ measured ] SIGSTOP: session ended " << std::lround(fallback_ms)
             << " ms after the client froze (timeout_ms " << kTimeoutMs << "); after SIGCONT " << rejected
             << " commands in 500 ms rejected as unknown session\n";

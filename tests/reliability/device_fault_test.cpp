@@ -311,7 +311,8 @@ TEST_P(DeviceFaultTest, IsReportedOthersKeepTheirLoopAndTheArmDoesNotJumpWhenBac
       line += "; reconnected " + std::to_string(std::lround(milliseconds_between(injected, *back))) +
               " ms after the fault began";
     }
-    ASSERT_EQ(wait_for_state(driver(), DeviceState::kRunning, 10s).state, DeviceState::kRunning) << robotd_->log();
+    ASSERT_EQ(wait_for_state(driver(), DeviceState::kRunning, 10s).state, DeviceState::kRunning)
+        << robotd_->log() << "simulator: " << rig_.sim->control({{"op", "state"}}).dump();
     // A motor that went limp with its fault may still coast; once it is at rest it must stay
     // there, short of the target it had when the fault came.
     EXPECT_TRUE(wait_for_joints([](const JointState& s) { return std::fabs(s.velocity[0]) < 0.02; }, 3s, driver()))

@@ -57,13 +57,15 @@ int hold_a_session(robotd::Client& client, const std::string& device, const std:
   request.device = device;
   request.on_timeout = *behavior;
   request.timeout = std::chrono::milliseconds(timeout_ms);
+  // The state first: the session's timeout runs from the grant, and on a loaded machine the first
+  // joint state can take longer than timeout_ms to arrive.
+  auto state = client.next_joint_state(device, std::chrono::seconds(2));
+  if (!state) return 4;
   auto session = client.request_control(request);
   if (!session) {
     std::printf("refused %s\n", session.error().message.c_str());
     return 3;
   }
-  auto state = client.next_joint_state(device, std::chrono::seconds(2));
-  if (!state) return 4;
   std::vector<float> hold;
   for (const auto id : session.value().motor_ids()) {
     hold.push_back(static_cast<float>(state.value().position[static_cast<std::size_t>(id)]));

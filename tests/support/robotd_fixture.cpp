@@ -48,6 +48,8 @@ nlohmann::json RobotdTest::sim_state(const std::string& device) {
   return state ? nlohmann::json::parse(state.value()) : nlohmann::json::object();
 }
 
+nlohmann::json RobotdTest::sim_joints(const std::string& device) { return sim_state(device)["joints"]; }
+
 bool RobotdTest::wait_for_joints(const std::function<bool(const JointState&)>& predicate,
                                  std::chrono::milliseconds timeout, const std::string& device) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;

@@ -30,6 +30,9 @@ class RobotdTest : public ::testing::Test {
   JointState joint_state(const std::string& device = "arm");
   /// The sim driver's own view (device_call "state").
   nlohmann::json sim_state(const std::string& device = "arm");
+  /// sim_state()["joints"] as a value of its own: `for (auto& j : sim_state()["joints"])` would walk
+  /// a member of a temporary destroyed before the loop starts.
+  nlohmann::json sim_joints(const std::string& device = "arm");
   /// Waits until `predicate(joint_state)` holds; false on timeout.
   bool wait_for_joints(const std::function<bool(const JointState&)>& predicate, std::chrono::milliseconds timeout,
                        const std::string& device = "arm");

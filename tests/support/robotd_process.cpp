@@ -7,6 +7,7 @@
 #include <signal.h>
 #include <sstream>
 #include <stdexcept>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -19,6 +20,15 @@ extern char** environ;  // NOLINT
 
 namespace robotd::testing {
 namespace {
+
+/// In a child just forked from `parent`: the kernel SIGKILLs it when the test process ends, however
+/// it ends. A test that aborts, or that CTest kills on a timeout, would otherwise leave its robotd
+/// running on the test's DDS domain, for the next test that takes that domain id to talk to.
+/// (The signal follows the forking thread: tests start their processes from the test's thread.)
+void end_with_parent(pid_t parent) {
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != parent) _exit(127);  // the parent was already gone
+}
 
 std::string temp_path(const std::string& stem) {
   std::string pattern = "/tmp/robotd-test-" + stem + "-XXXXXX";
@@ -90,8 +100,10 @@ RobotdProcess::RobotdProcess(const nlohmann::json& config, std::vector<std::stri
   env.insert(env.end(), environment.begin(), environment.end());
   auto argv = c_strings(arguments);
   auto envp = c_strings(env);
+  const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ == 0) {
+    end_with_parent(parent);
     const int log_fd = open(log_path_.c_str(), O_WRONLY | O_TRUNC);
     dup2(log_fd, STDOUT_FILENO);
     dup2(log_fd, STDERR_FILENO);
@@ -160,8 +172,10 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
   std::vector<std::string> args{program};
   args.insert(args.end(), arguments.begin(), arguments.end());
   auto argv = c_strings(args);
+  const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ == 0) {
+    end_with_parent(parent);
     dup2(fds[1], STDOUT_FILENO);
     execv(argv[0], argv.data());
     _exit(127);
