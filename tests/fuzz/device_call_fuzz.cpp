@@ -5,8 +5,9 @@
 // message, without blocking and without throwing; a result must be JSON the service can send
 // as is (dump() throws on text that is not UTF-8).
 //
-// Without a controller the RealMan and xArm drivers refuse every op but "state" before they
-// read its arguments; their ops' argument checks run in tests/drivers/*/ against the simulators.
+// Without a controller, the RealMan and xArm drivers read and check an op's arguments, then
+// refuse it as not connected: their argument checks are fuzzed, the requests they would send are
+// not (tests/drivers/*/ run those against the simulators).
 //
 // Input: the driver's name ("sim", "piper", …) on the first line, the op on the second, then
 // args_json.

@@ -66,7 +66,7 @@ Result<nlohmann::json> RealmanOps::gripper(const std::string& op, const nlohmann
 Result<nlohmann::json> RealmanOps::get_gripper_state(const nlohmann::json& args) {
   OpArguments arguments("get_gripper_state", args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request("get_gripper_state"));
+  auto reply = request(plain_request("get_gripper_state"));
   if (!reply) return reply.error();
   auto state = parse_gripper_state(Message{MessageKind::kReply, "get_gripper_state", reply.value().body});
   if (!state) return state.error();

@@ -43,7 +43,7 @@ nlohmann::json flags(const nlohmann::json& values) {
 Result<nlohmann::json> RealmanOps::get_current_arm_state(const nlohmann::json& args) {
   OpArguments arguments("get_current_arm_state", args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request("get_current_arm_state"));
+  auto reply = request(plain_request("get_current_arm_state"));
   if (!reply) return reply.error();
   auto state = parse_current_arm_state(Message{MessageKind::kReply, "current_arm_state", reply.value().body});
   if (!state) return state.error();
@@ -60,7 +60,7 @@ Result<nlohmann::json> RealmanOps::get_current_arm_state(const nlohmann::json& a
 Result<nlohmann::json> RealmanOps::get_joint_err_flag(const nlohmann::json& args) {
   OpArguments arguments("get_joint_err_flag", args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request("get_joint_err_flag"));
+  auto reply = request(plain_request("get_joint_err_flag"));
   if (!reply) return reply.error();
   const nlohmann::json& body = reply.value().body;
   nlohmann::json out{{"joints", joint_errors(body.value("err_flag", nlohmann::json::array()))}};
@@ -74,7 +74,7 @@ Result<nlohmann::json> RealmanOps::get_joint_err_flag(const nlohmann::json& args
 Result<nlohmann::json> RealmanOps::get_joint_en_state(const nlohmann::json& args) {
   OpArguments arguments("get_joint_en_state", args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request("get_joint_en_state"));
+  auto reply = request(plain_request("get_joint_en_state"));
   if (!reply) return reply.error();
   return nlohmann::json{{"enabled", flags(reply.value().body.value("en_state", nlohmann::json::array()))}};
 }
@@ -82,7 +82,7 @@ Result<nlohmann::json> RealmanOps::get_joint_en_state(const nlohmann::json& args
 Result<nlohmann::json> RealmanOps::get_arm_all_state(const nlohmann::json& args) {
   OpArguments arguments("get_arm_all_state", args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request("get_arm_all_state"));
+  auto reply = request(plain_request("get_arm_all_state"));
   if (!reply) return reply.error();
   const nlohmann::json all = reply.value().body.value("all_state", nlohmann::json::object());
   return nlohmann::json{{"temperature_c", scaled(all, "temperature", kMilli)},
@@ -96,7 +96,7 @@ Result<nlohmann::json> RealmanOps::get_arm_all_state(const nlohmann::json& args)
 Result<nlohmann::json> RealmanOps::get_controller_state(const nlohmann::json& args) {
   OpArguments arguments("get_controller_state", args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request("get_controller_state"));
+  auto reply = request(plain_request("get_controller_state"));
   if (!reply) return reply.error();
   const nlohmann::json& body = reply.value().body;
   const auto number = [&](const char* key) { return body.value(key, 0.0); };
@@ -110,7 +110,7 @@ Result<nlohmann::json> RealmanOps::get_controller_state(const nlohmann::json& ar
 Result<nlohmann::json> RealmanOps::verbatim(const std::string& op, const nlohmann::json& args) {
   OpArguments arguments(op, args);
   if (auto error = arguments.finish()) return *error;
-  auto reply = driver_.request(plain_request(op));
+  auto reply = request(plain_request(op));
   if (!reply) return reply.error();
   return reply.value().body;
 }

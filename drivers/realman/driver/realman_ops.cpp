@@ -80,10 +80,6 @@ bool OpArguments::block() { return reader().boolean_or("block", true); }
 double OpArguments::timeout_s() { return reader().number_or("timeout_s", 60, NumberRange{.min = 0.1, .max = 3600}); }
 
 Result<nlohmann::json> RealmanOps::call(const std::string& op, const nlohmann::json& args) {
-  if (!driver_.connected_.load(std::memory_order_acquire) && op != "state") {
-    return make_error(ErrorCode::kRefused,
-                      op + ": not connected to the RealMan controller at " + driver_.params_.controller.to_string());
-  }
   try {
     if (op == "movej") return movej(args);
     if (op == "movel" || op == "movej_p") return cartesian_move(op, args);
@@ -116,11 +112,24 @@ Result<nlohmann::json> RealmanOps::send(const nlohmann::json& message, std::opti
   RequestOptions options = driver_.default_options();
   options.completion = block_device;
   options.completion_timeout = std::chrono::milliseconds(std::llround(timeout_s * 1000));
-  auto reply = driver_.request(message, options);
+  auto reply = request(message, options);
   if (!reply) return reply.error();
   nlohmann::json result = {{"accepted", true}};
   if (reply.value().completion) result["completed"] = reply.value().completion->reached;
   return result;
+}
+
+Result<ControllerLink::Reply> RealmanOps::request(const nlohmann::json& message) {
+  return request(message, driver_.default_options());
+}
+
+Result<ControllerLink::Reply> RealmanOps::request(const nlohmann::json& message, const RequestOptions& options) {
+  if (!driver_.connected_.load(std::memory_order_acquire)) {
+    return make_error(ErrorCode::kRefused, message.value("command", "") +
+                                               ": not connected to the RealMan controller at " +
+                                               driver_.params_.controller.to_string());
+  }
+  return driver_.request(message, options);
 }
 
 }  // namespace robotd::realman

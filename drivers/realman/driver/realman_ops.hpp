@@ -51,6 +51,10 @@ class RealmanOps {
 
   /// Sends and, with `block`, waits for `device`'s completion event (timeout_s).
   Result<nlohmann::json> send(const nlohmann::json& message, std::optional<Device> block_device, double timeout_s);
+  /// The driver's request, refused while robotd is not connected. Ops read and check their
+  /// arguments before they get here, so a bad argument is named whether or not the arm is there.
+  Result<ControllerLink::Reply> request(const nlohmann::json& message);
+  Result<ControllerLink::Reply> request(const nlohmann::json& message, const RequestOptions& options);
 
   RealmanDriver& driver_;
 };

@@ -25,6 +25,7 @@ WaitArguments read_wait(JsonReader& reader) {
 }  // namespace
 
 std::optional<Error> XarmOps::check_can_plan(std::string_view op) const {
+  if (auto refused = check_connected(op)) return refused;
   // A session that just ended is still leaving servo mode (the arm settles on its last servo_j,
   // then set_mode 0): a planned move asked for meanwhile waits for position mode.
   const auto deadline = std::chrono::steady_clock::now() + kLeaveServoWait;

@@ -68,10 +68,6 @@ std::vector<driver::OpDescription> op_descriptions() {
 }
 
 Result<nlohmann::json> XarmOps::call(const std::string& op, const nlohmann::json& args) {
-  if (!driver_.connected_.load(std::memory_order_acquire) && op != "state") {
-    return make_error(ErrorCode::kRefused,
-                      op + ": not connected to the xArm control box at " + driver_.params_.controller.to_string());
-  }
   try {
     if (op == "move_line" || op == "move_lineb") return move_line(op, args);
     if (op == "move_joint") return move_joint(args);
@@ -108,7 +104,14 @@ Result<nlohmann::json> XarmOps::call(const std::string& op, const nlohmann::json
   return make_error(ErrorCode::kInvalidArgument, "unknown op \"" + op + "\" (the xarm driver has: " + known + ")");
 }
 
+std::optional<Error> XarmOps::check_connected(std::string_view op) const {
+  if (driver_.connected_.load(std::memory_order_acquire)) return std::nullopt;
+  return make_error(ErrorCode::kRefused, std::string(op) + ": not connected to the xArm control box at " +
+                                             driver_.params_.controller.to_string());
+}
+
 Result<Reply> XarmOps::exchange(std::string_view op, const Request& request) {
+  if (auto refused = check_connected(op)) return *refused;
   auto reply = driver_.request(request);
   if (!reply) return make_error(reply.error().code, std::string(op) + ": " + reply.error().message);
   const int code = execution_state(reply.value());

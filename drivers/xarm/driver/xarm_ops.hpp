@@ -64,6 +64,9 @@ class XarmOps {
   /// Sends and judges: the reply, or kRefused "<op>: <execution state text>: <controller error
   /// or warning>" when the execution state is not a success for this register.
   Result<Reply> exchange(std::string_view op, const Request& request);
+  /// Refuses while robotd is not connected. Ops read and check their arguments first, so a bad
+  /// argument is named whether or not the arm is there.
+  std::optional<Error> check_connected(std::string_view op) const;
   /// exchange(), answered with the execution state alone.
   Result<nlohmann::json> acknowledge(std::string_view op, const Request& request);
   /// {"execution_state": n, "execution_text": "…"}

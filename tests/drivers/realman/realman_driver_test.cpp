@@ -114,6 +114,18 @@ TEST(RealmanConnect, NothingListeningIsNotAvailableAndNamesTheAddress) {
   driver::FaultInfo fault;
   EXPECT_EQ(driver.read(feedback, fault), IoResult::kDisconnected);
   EXPECT_NE(std::string(fault.text.data()).find("not connected"), std::string::npos) << fault.text.data();
+
+  // Ops check their arguments with or without the controller, then need it.
+  const auto bad = driver.call("movej", {{"joints_rad", {0, 0, 0}}});
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(bad.error().message.find("joints_rad"), std::string::npos) << bad.error().message;
+  const auto good = driver.call("movej", {{"joints_rad", {0, 0, 0, 0, 0, 0}}, {"block", false}});
+  ASSERT_FALSE(good);
+  EXPECT_EQ(good.error().code, ErrorCode::kRefused);
+  EXPECT_NE(good.error().message.find("movej: not connected to the RealMan controller at 127.0.0.1:"),
+            std::string::npos)
+      << good.error().message;
 }
 
 TEST(RealmanConnect, AControllerOfAnotherModelIsRefusedWithTheFix) {

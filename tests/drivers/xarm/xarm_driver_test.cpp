@@ -158,6 +158,18 @@ TEST(XarmConnect, NothingListeningIsNotAvailableAndNamesTheAddress) {
   driver::FaultInfo fault;
   EXPECT_EQ(driver.read(feedback, fault), IoResult::kDisconnected);
   EXPECT_NE(std::string(fault.text.data()).find("not connected"), std::string::npos) << fault.text.data();
+
+  // Ops check their arguments with or without the control box, then need it.
+  const auto bad = driver.call("move_joint", {{"joints_rad", {0, 0, 0}}});
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(bad.error().message.find("joints_rad"), std::string::npos) << bad.error().message;
+  const auto good = driver.call("move_joint", {{"joints_rad", {0, 0, 0, 0, 0, 0}}});
+  ASSERT_FALSE(good);
+  EXPECT_EQ(good.error().code, ErrorCode::kRefused);
+  EXPECT_NE(good.error().message.find("move_joint: not connected to the xArm control box at 127.0.0.1:"),
+            std::string::npos)
+      << good.error().message;
 }
 
 TEST(XarmConnect, AnArmOfAnotherModelIsRefusedWithTheFix) {
