@@ -3,7 +3,6 @@
 build a separate project against find_package(robotd_client), then run the installed robotd
 (finding its installed sim plugin) and talk to it with the installed robotctl and the consumer."""
 import argparse
-import fcntl
 import os
 import subprocess
 import sys
@@ -12,19 +11,10 @@ import time
 import unittest
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from test_domain import claim_domain_id  # noqa: E402  (tests/support)
+
 ARGS = None
-
-
-def lock_test_domain():
-    """An exclusive flock on /tmp/robotd-test-domain-<id>.lock (shared with the C++ tests)."""
-    for domain in range(100 + os.getpid() % 37, 230):
-        handle = open(f"/tmp/robotd-test-domain-{domain}.lock", "w")
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            return domain, handle
-        except OSError:
-            handle.close()
-    raise RuntimeError("no free test DDS domain id")
 
 
 class InstallTest(unittest.TestCase):
@@ -50,7 +40,11 @@ class InstallTest(unittest.TestCase):
             "bin/robotd-parol6-sim",
             f"{ARGS.libdir}/librobotd_client.so",
             f"{ARGS.libdir}/cmake/robotd_client/robotd_clientConfig.cmake",
+            f"{ARGS.libdir}/librobotd_c.so",
+            f"{ARGS.libdir}/pkgconfig/robotd-c.pc",
             "include/robotd/client.hpp",
+            "include/robotd/robotd.h",
+            "share/robotd/examples/move_arm.c",
             "include/robotd/messages.hpp",
             "include/robotd/driver/driver.hpp",
             "etc/robotd/robotd.json",
@@ -77,7 +71,7 @@ class InstallTest(unittest.TestCase):
             compile_ = subprocess.run(["cmake", "--build", build], capture_output=True, text=True)
             self.assertEqual(compile_.returncode, 0, compile_.stdout + compile_.stderr)
 
-            domain, lock = lock_test_domain()
+            domain, lock = claim_domain_id()
             with lock, tempfile.NamedTemporaryFile("w", suffix=".json") as config:
                 config.write('{"dds": {"domain_id": %d, "interface": "127.0.0.1", "multicast": false,'
                              ' "peers": ["127.0.0.1"]},'

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Fail, listing them, if any C++ source of the project is not formatted per .clang-format.
+# Fail, listing them, if any C or C++ source of the project is not formatted per .clang-format.
 #
 #   run_clang_format.sh SOURCE_DIR [CLANG_FORMAT]
 #
-# Checks *.cpp *.hpp *.h under daemon/ clients/ drivers/ idl/include idl/wire tests/ bench/.
+# Checks *.cpp *.hpp *.c *.h under daemon/ clients/ drivers/ idl/include idl/wire tests/ bench/
+# examples/.
 # Files come from git (tracked plus untracked-not-ignored) when SOURCE_DIR is a git work tree,
 # else from find. Fix with: clang-format -i FILE...
 set -euo pipefail
@@ -14,14 +15,14 @@ command -v "$clang_format" >/dev/null || { echo "SKIP: $clang_format not found" 
 cd "$src"
 
 dirs=()
-for d in daemon clients drivers idl/include idl/wire tests bench; do [[ -d $d ]] && dirs+=("$d"); done
+for d in daemon clients drivers idl/include idl/wire tests bench examples; do [[ -d $d ]] && dirs+=("$d"); done
 ((${#dirs[@]} > 0)) || { echo "no source directories"; exit 0; }
 
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   mapfile -t files < <(git ls-files --cached --others --exclude-standard -- "${dirs[@]}" |
-    grep -E '\.(cpp|hpp|h)$' | sort -u | while read -r f; do [[ -f $f ]] && echo "$f"; done)
+    grep -E '\.(cpp|hpp|c|h)$' | sort -u | while read -r f; do [[ -f $f ]] && echo "$f"; done)
 else
-  mapfile -t files < <(find "${dirs[@]}" -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) | sort)
+  mapfile -t files < <(find "${dirs[@]}" -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.c' -o -name '*.h' \) | sort)
 fi
 ((${#files[@]} > 0)) || { echo "no files to check"; exit 0; }
 

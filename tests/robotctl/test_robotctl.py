@@ -8,7 +8,6 @@ held for the whole run, so tests running in parallel never share a domain.
 """
 
 import argparse
-import fcntl
 import json
 import os
 import re
@@ -19,26 +18,14 @@ import sys
 import tempfile
 import time
 import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from test_domain import claim_domain_id  # noqa: E402  (tests/support)
 
 ROBOTD = ""
 ROBOTCTL = ""
-FIRST_DOMAIN_ID, LAST_DOMAIN_ID = 100, 229
 ARM_JOINTS = 6
-
-
-def claim_domain_id(taken=()):
-    """Locks the first free test domain id; returns (id, open lock file). Raises if none is free."""
-    for domain_id in range(FIRST_DOMAIN_ID, LAST_DOMAIN_ID + 1):
-        if domain_id in taken:
-            continue
-        lock = open(f"/tmp/robotd-test-domain-{domain_id}.lock", "w")
-        try:
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            return domain_id, lock
-        except BlockingIOError:
-            lock.close()
-    raise RuntimeError(f"every DDS domain id in {FIRST_DOMAIN_ID}..{LAST_DOMAIN_ID} is locked by another test")
-
 
 def robotd_config(domain_id):
     """config/robotd.json reduced to its arm, on loopback and on `domain_id`."""

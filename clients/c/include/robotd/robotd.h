@@ -1,0 +1,307 @@
+/* The robotd C API: a small, stable C interface over the robotd C++ client (C99, and C++).
+ *
+ *   robotd_client* client = NULL;
+ *   robotd_session* session = NULL;
+ *   robotd_session_request request;
+ *   if (robotd_connect(NULL, &client) != ROBOTD_OK) puts(robotd_last_error());
+ *   robotd_session_request_init(&request);
+ *   request.device = "arm";
+ *   if (robotd_request_control(client, &request, &session) != ROBOTD_OK) puts(robotd_last_error());
+ *   robotd_send_positions(session, positions_rad, 6);   (repeatedly: robotd times out a silent session)
+ *   robotd_session_free(session);                        (releases the motors)
+ *   robotd_disconnect(client);
+ *
+ * Conventions:
+ * - Every call that can fail returns a robotd_status; on failure robotd_last_error() says why.
+ *   Results go to out-parameters, written only on success (and the count and the items that fit
+ *   on ROBOTD_BUFFER_TOO_SMALL).
+ * - Handles (robotd_client, robotd_session, robotd_subscription) are opaque; each has one
+ *   function that frees it and accepts NULL.
+ * - Structs are plain data with fixed-size arrays. Text fields are always NUL-terminated; a
+ *   longer text from robotd is cut at the field's capacity.
+ * - Units are SI and radians, as on robotd's DDS interface.
+ *
+ * Threading: a client may be shared by threads. A session, and any one struct, is used by one
+ * thread at a time. Callbacks run on the client's dispatch thread (see robotd_subscribe_joint_states).
+ *
+ * Lifetime: sessions and subscriptions keep their client's DDS connection open, so they may be
+ * freed before or after robotd_disconnect; the connection closes when the last of them is freed.
+ *
+ * docs/clients.md ("C") is the guide. */
+#ifndef ROBOTD_ROBOTD_H
+#define ROBOTD_ROBOTD_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(__GNUC__)
+#define ROBOTD_API __attribute__((visibility("default")))
+#else
+#define ROBOTD_API
+#endif
+
+/* In C every int32_t is a value of an enum type; in C++ an enum holds only the values its
+ * enumerators span unless it has a fixed underlying type. This gives it one, so that C++ code
+ * (the library itself) may read whatever a C caller passed and reject it as invalid. */
+#ifdef __cplusplus
+#define ROBOTD_ENUM_BASE : int32_t
+#else
+#define ROBOTD_ENUM_BASE
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* This is a C header: typedef is its only spelling. NOLINTBEGIN(modernize-use-using) */
+
+/* The version of this API: changes when a function or struct of this header changes. */
+#define ROBOTD_C_API_VERSION 1
+
+#define ROBOTD_MAX_JOINTS 64     /* joints per device (the driver API's limit) */
+#define ROBOTD_NAME_CAPACITY 64  /* device, driver, model and joint names, NUL included */
+#define ROBOTD_UUID_CAPACITY 40  /* a session uuid (36 characters, 8-4-4-4-12), NUL included */
+#define ROBOTD_TEXT_CAPACITY 256 /* state and fault texts, NUL included */
+
+typedef enum robotd_status ROBOTD_ENUM_BASE {
+  ROBOTD_OK = 0,
+  ROBOTD_TIMEOUT = 1,          /* no answer or sample within the deadline */
+  ROBOTD_NOT_AVAILABLE = 2,    /* robotd (or the service) is not reachable on this DDS domain */
+  ROBOTD_REFUSED = 3,          /* robotd answered and said no; robotd_last_error() has its reason */
+  ROBOTD_INVALID_ARGUMENT = 4, /* the caller passed something malformed; nothing was sent */
+  ROBOTD_TRANSPORT = 5,        /* the DDS layer failed */
+  ROBOTD_NOT_PERMITTED = 6,    /* DDS Security: this identity's permissions do not allow it */
+  ROBOTD_BUFFER_TOO_SMALL = 7, /* the caller's array holds fewer items than there are */
+  ROBOTD_INTERNAL_ERROR = 8    /* out of memory, or a failure inside this library */
+} robotd_status;
+
+/* How a session commands its motors. */
+typedef enum robotd_control_mode ROBOTD_ENUM_BASE {
+  ROBOTD_MODE_POSITION = 0, /* positions (optional velocities, kp, kd) */
+  ROBOTD_MODE_TORQUE = 1,   /* torques */
+  ROBOTD_MODE_MIXED = 2     /* positions, kp, kd and torques: the MIT law with feed-forward */
+} robotd_control_mode;
+
+/* What happens to a session's motors on timeout or release. */
+typedef enum robotd_behavior ROBOTD_ENUM_BASE {
+  ROBOTD_BEHAVIOR_KEEP = 0,       /* hold where commanded now */
+  ROBOTD_BEHAVIOR_DAMPING = 1,    /* kp = 0, kd = the session's default kd */
+  ROBOTD_BEHAVIOR_ZERO_TORQUE = 2 /* let go */
+} robotd_behavior;
+
+typedef enum robotd_device_state ROBOTD_ENUM_BASE {
+  ROBOTD_DEVICE_CONNECTING = 0,
+  ROBOTD_DEVICE_RUNNING = 1,
+  ROBOTD_DEVICE_FAULT = 2,
+  ROBOTD_DEVICE_ESTOP = 3,
+  ROBOTD_DEVICE_MAINTENANCE = 4, /* recover or reset_zero in progress */
+  ROBOTD_DEVICE_STOPPED = 5
+} robotd_device_state;
+
+/* ---- Errors and versions -------------------------------------------------------------- */
+
+/* The calling thread's message for its last call: why it failed, or "" if it succeeded. When
+ * robotd refused, it carries robotd's own reason. Valid until this thread's next robotd call. */
+ROBOTD_API const char* robotd_last_error(void);
+/* "ROBOTD_OK", "ROBOTD_TIMEOUT", ...; "ROBOTD_UNKNOWN_STATUS" for other values. */
+ROBOTD_API const char* robotd_status_name(robotd_status status);
+
+/* ROBOTD_C_API_VERSION of the library loaded, which may differ from the header compiled against. */
+ROBOTD_API int robotd_c_api_version(void);
+/* The robotd project version, e.g. "0.1.0". */
+ROBOTD_API const char* robotd_version(void);
+
+/* ---- Connecting ------------------------------------------------------------------------ */
+
+typedef struct robotd_client robotd_client;
+
+typedef struct robotd_client_options {
+  int32_t domain_id;
+  const char* network_interface; /* address or interface name; NULL or "" = Cyclone DDS picks */
+  const char* peers;             /* comma-separated addresses to reach robotd at; NULL or "" = none */
+  bool multicast;
+  const char* node_name;      /* how robotd names this client, e.g. in a refusal */
+  int32_t service_timeout_ms; /* the longest any service call waits, > 0 */
+} robotd_client_options;
+
+/* The defaults, as robotd_connect(NULL, ...) uses them: domain 0 on loopback, overridden by
+ * ROBOTD_DOMAIN_ID, ROBOTD_DDS_INTERFACE, ROBOTD_DDS_PEERS and ROBOTD_DDS_MULTICAST=1. The
+ * strings point into storage of the calling thread, valid until its next call of this function. */
+ROBOTD_API robotd_status robotd_client_options_init(robotd_client_options* options);
+
+/* Joins robotd's DDS domain (options NULL = robotd_client_options_init's defaults). Succeeds
+ * even if robotd is not running; calls then fail with ROBOTD_NOT_AVAILABLE after the service
+ * timeout. A DDS Security identity is taken from ROBOTD_DDS_SECURITY_* in the environment. */
+ROBOTD_API robotd_status robotd_connect(const robotd_client_options* options, robotd_client** client);
+/* Frees the handle. NULL is allowed. */
+ROBOTD_API void robotd_disconnect(robotd_client* client);
+
+/* ---- Devices --------------------------------------------------------------------------- */
+
+typedef struct robotd_device_info {
+  char name[ROBOTD_NAME_CAPACITY];
+  char driver[ROBOTD_NAME_CAPACITY];
+  char model[ROBOTD_NAME_CAPACITY];
+  robotd_device_state state;
+  double rate_hz; /* the control loop's rate */
+  size_t joint_count;
+  char joint_names[ROBOTD_MAX_JOINTS][ROBOTD_NAME_CAPACITY];
+  double position_min[ROBOTD_MAX_JOINTS]; /* rad */
+  double position_max[ROBOTD_MAX_JOINTS]; /* rad */
+  double velocity_max[ROBOTD_MAX_JOINTS]; /* rad/s */
+  double effort_max[ROBOTD_MAX_JOINTS];   /* N·m */
+} robotd_device_info;
+
+/* The devices robotd drives. *count = how many there are; if that is more than `capacity`, the
+ * first `capacity` are filled and ROBOTD_BUFFER_TOO_SMALL is returned. devices may be NULL
+ * when capacity is 0 (to ask for the count). */
+ROBOTD_API robotd_status robotd_list_devices(robotd_client* client, robotd_device_info* devices, size_t capacity,
+                                             size_t* count);
+
+/* ---- Sessions -------------------------------------------------------------------------- */
+
+typedef struct robotd_session robotd_session;
+
+typedef struct robotd_session_request {
+  const char* device;         /* NULL or "" = robotd's only device */
+  const int32_t* motor_ids;   /* motor_count ids, or NULL with motor_count 0 = every motor */
+  size_t motor_count;         /* 0..ROBOTD_MAX_JOINTS */
+  robotd_control_mode mode;   /* default POSITION */
+  robotd_behavior on_timeout; /* default DAMPING: what robotd does if the session goes silent */
+  int32_t timeout_ms;         /* default 1000: silence after which robotd ends the session */
+  const float* default_kp;    /* NULL, or motor_count gains for the session's commands */
+  const float* default_kd;
+  robotd_behavior on_release; /* default KEEP: what robotd_session_free's release asks for */
+} robotd_session_request;
+
+ROBOTD_API robotd_status robotd_session_request_init(robotd_session_request* request);
+
+/* Asks robotd for exclusive control of the request's motors. Refused (ROBOTD_REFUSED) when
+ * another session holds any of them; robotd_last_error() then names the holder. */
+ROBOTD_API robotd_status robotd_request_control(robotd_client* client, const robotd_session_request* request,
+                                                robotd_session** session);
+
+/* The session's uuid and granted device; the strings live as long as the session handle. */
+ROBOTD_API robotd_status robotd_session_uuid(const robotd_session* session, const char** uuid);
+ROBOTD_API robotd_status robotd_session_device(const robotd_session* session, const char** device);
+/* The granted motor ids, in the order send_positions uses. Same capacity rules as list_devices. */
+ROBOTD_API robotd_status robotd_session_motor_ids(const robotd_session* session, int32_t* motor_ids, size_t capacity,
+                                                  size_t* count);
+ROBOTD_API robotd_status robotd_session_mode(const robotd_session* session, robotd_control_mode* mode);
+/* What robotd really does on timeout (a position-only arm cannot damp). */
+ROBOTD_API robotd_status robotd_session_timeout_behavior(const robotd_session* session, robotd_behavior* behavior);
+
+/* Releases the motors now (robotd applies `behavior`). The handle stays valid for its accessors;
+ * commands and a second release fail with ROBOTD_INVALID_ARGUMENT. */
+ROBOTD_API robotd_status robotd_release(robotd_session* session, robotd_behavior behavior);
+/* Releases any session by its uuid (like robotctl release), e.g. one whose client died. */
+ROBOTD_API robotd_status robotd_release_by_uuid(robotd_client* client, const char* uuid, robotd_behavior behavior);
+/* Releases the session with its request's on_release if still active, then frees the handle.
+ * May wait up to the service timeout for robotd; robotd_last_error() says why a release failed
+ * ("" if it did not). NULL is allowed. */
+ROBOTD_API void robotd_session_free(robotd_session* session);
+
+/* ---- Commands -------------------------------------------------------------------------- */
+
+/* One command; zero-initialise it and set what it carries. With motor_ids NULL and count 0 it
+ * addresses the session's motors in order, and each array holds one value per session motor;
+ * otherwise each array holds `count` values for `motor_ids`. Each array may be NULL. No values
+ * at all is a keepalive. Which arrays a mode needs: POSITION positions; TORQUE torques; MIXED
+ * positions, kp, kd and torques. robotd's verdict shows in robotd_device_status's counters. */
+typedef struct robotd_command {
+  const int32_t* motor_ids;
+  size_t count;            /* 0..ROBOTD_MAX_JOINTS */
+  const float* positions;  /* rad */
+  const float* velocities; /* rad/s */
+  const float* kp;         /* N·m/rad */
+  const float* kd;         /* N·m·s/rad */
+  const float* torques;    /* N·m */
+} robotd_command;
+
+/* Publishes a command; fails only on malformed input, a released session or a DDS error. */
+ROBOTD_API robotd_status robotd_send_command(robotd_session* session, const robotd_command* command);
+/* Positions for every motor of the session, in robotd_session_motor_ids order (count = that many). */
+ROBOTD_API robotd_status robotd_send_positions(robotd_session* session, const float* positions_rad, size_t count);
+/* Renews the session without moving anything. */
+ROBOTD_API robotd_status robotd_keepalive(robotd_session* session);
+
+/* ---- State ----------------------------------------------------------------------------- */
+
+typedef struct robotd_joint_state {
+  char device[ROBOTD_NAME_CAPACITY];
+  int64_t stamp_ns; /* CLOCK_REALTIME */
+  size_t joint_count;
+  char names[ROBOTD_MAX_JOINTS][ROBOTD_NAME_CAPACITY];
+  double position[ROBOTD_MAX_JOINTS]; /* rad */
+  double velocity[ROBOTD_MAX_JOINTS]; /* rad/s */
+  double effort[ROBOTD_MAX_JOINTS];   /* N·m */
+} robotd_joint_state;
+
+typedef struct robotd_device_status {
+  char device[ROBOTD_NAME_CAPACITY];
+  int64_t stamp_ns; /* CLOCK_REALTIME */
+  robotd_device_state state;
+  char state_text[ROBOTD_TEXT_CAPACITY];
+  int32_t fault_code;
+  char fault_text[ROBOTD_TEXT_CAPACITY];
+  bool estop_engaged;
+  float loop_period_p50_us; /* the control loop's period over its statistics window */
+  float loop_period_p99_us;
+  float loop_period_max_us;
+  uint64_t loop_overruns;     /* ticks missed since start */
+  uint64_t commands_accepted; /* since start */
+  uint64_t commands_rejected; /* since start, every reason */
+} robotd_device_status;
+
+/* The next /joint_states sample robotd publishes for `device` (NULL or "" = any device), or
+ * ROBOTD_TIMEOUT after timeout_ms. */
+ROBOTD_API robotd_status robotd_next_joint_state(robotd_client* client, const char* device, int32_t timeout_ms,
+                                                 robotd_joint_state* state);
+/* The same for /device_status. */
+ROBOTD_API robotd_status robotd_next_device_status(robotd_client* client, const char* device, int32_t timeout_ms,
+                                                   robotd_device_status* status);
+
+/* ---- Subscriptions --------------------------------------------------------------------- */
+
+typedef struct robotd_subscription robotd_subscription;
+
+/* The struct is valid only during the call. */
+typedef void (*robotd_joint_state_callback)(const robotd_joint_state* state, void* user_data);
+typedef void (*robotd_device_status_callback)(const robotd_device_status* status, void* user_data);
+
+/* Calls `callback` with every sample of every device, on the client's dispatch thread (one
+ * thread per client, shared by its subscriptions: a slow callback delays the others). A
+ * callback may command sessions and call services, but must not subscribe, unsubscribe or call
+ * robotd_next_* on its own client: those fail with ROBOTD_INVALID_ARGUMENT there. */
+ROBOTD_API robotd_status robotd_subscribe_joint_states(robotd_client* client, robotd_joint_state_callback callback,
+                                                       void* user_data, robotd_subscription** subscription);
+ROBOTD_API robotd_status robotd_subscribe_device_status(robotd_client* client, robotd_device_status_callback callback,
+                                                        void* user_data, robotd_subscription** subscription);
+/* Stops the callbacks and frees the handle; returns after a running callback has finished. NULL
+ * is allowed. From a callback of the same client it fails (ROBOTD_INVALID_ARGUMENT) and frees
+ * nothing. */
+ROBOTD_API robotd_status robotd_unsubscribe(robotd_subscription* subscription);
+
+/* ---- Safety and device operations ------------------------------------------------------ */
+
+/* Engages (latches) the e-stop of `device` (NULL or "" = every device); reason may be NULL. */
+ROBOTD_API robotd_status robotd_estop(robotd_client* client, const char* device, const char* reason);
+ROBOTD_API robotd_status robotd_reset_estop(robotd_client* client, const char* device);
+
+/* A device operation (a driver op, or robotd's recover / blackbox / loop_timing) with JSON
+ * arguments (NULL = "{}"). Finding robotd takes at most the service timeout, the operation up to
+ * timeout_ms. On success *result_json is its JSON result, allocated by the library: free it with
+ * robotd_free_string. A driver's refusal is ROBOTD_REFUSED with the driver's message. */
+ROBOTD_API robotd_status robotd_device_call(robotd_client* client, const char* device, const char* op,
+                                            const char* args_json, int32_t timeout_ms, char** result_json);
+/* Frees a string the library allocated. NULL is allowed. */
+ROBOTD_API void robotd_free_string(char* text);
+
+/* NOLINTEND(modernize-use-using) */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ROBOTD_ROBOTD_H */

@@ -1,0 +1,20 @@
+# cmake -DNM=<nm> -DLIBRARY=<librobotd_c.so> -P check_exports.cmake
+# Fails unless every symbol the library exports is a robotd_* function of the C API.
+execute_process(COMMAND ${NM} -D --defined-only --format=posix ${LIBRARY}
+                OUTPUT_VARIABLE symbols RESULT_VARIABLE result)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "${NM} failed on ${LIBRARY}")
+endif()
+string(REGEX MATCHALL "[^\n]+" lines "${symbols}")
+set(exported 0)
+foreach(line IN LISTS lines)
+  string(REGEX REPLACE " .*" "" name "${line}")
+  if(NOT name MATCHES "^robotd_")
+    message(FATAL_ERROR "${LIBRARY} exports ${name}: only robotd_* functions may be exported")
+  endif()
+  math(EXPR exported "${exported} + 1")
+endforeach()
+if(exported EQUAL 0)
+  message(FATAL_ERROR "${LIBRARY} exports nothing")
+endif()
+message(STATUS "${exported} robotd_* symbols exported, nothing else")
