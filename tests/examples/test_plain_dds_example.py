@@ -6,10 +6,7 @@ Passes when the example exits 0 after reporting that joint 0 moved, and robotctl
 observer, then sees joint 0 where the example left it, every one of the example's commands
 accepted (none rejected), and no session left open.
 
-robotd stops when this script ends, however it ends (an exception, SIGTERM, Ctrl-C, CTest's
-timeout, SIGKILL): it runs under a small sh guard whose stdin is a pipe only this script holds.
-When the script is gone the kernel closes the pipe, and the guard sends robotd SIGTERM, so robotd
-ends cleanly (and, in a sanitizer build, runs its leak check) rather than being killed."""
+robotd runs under tests/support/robotd_daemon.py, which stops it however this script ends."""
 import argparse
 import json
 import os
@@ -17,16 +14,10 @@ import re
 import signal
 import subprocess
 import sys
-import tempfile
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
-from test_domain import claim_domain_id  # noqa: E402  (tests/support)
-
-# Runs "$@" (robotd) until its stdin, the pipe from this script, closes; then stops it with SIGTERM
-# and exits with its status. An asynchronous command of a non-interactive sh reads /dev/null.
-GUARD = '"$@" & robotd=$!; cat > /dev/null; kill -TERM "$robotd" 2>/dev/null; wait "$robotd"'
+from robotd_daemon import RobotdDaemon, sim_arm  # noqa: E402  (tests/support)
 
 
 def robotctl(args, domain, *verb):
@@ -78,41 +69,20 @@ def main():
     parser.add_argument("--example", required=True)
     parser.add_argument("--robotctl", required=True)
     args = parser.parse_args()
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(128 + signal.SIGTERM))  # run the finally below
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(128 + signal.SIGTERM))  # run the with block's exit
 
-    domain, lock = claim_domain_id()
-    config = {
-        "daemon": {"log_level": "info", "status_rate_hz": 20, "session_status_period_ms": 200},
-        "dds": {"domain_id": domain, "interface": "127.0.0.1", "multicast": False, "peers": ["127.0.0.1"]},
-        "devices": [{"name": "arm", "driver": "sim", "rate_hz": 1000, "realtime": "prefer",
-                     "params": {"joint_count": 6}}],
-    }
-    with lock, tempfile.NamedTemporaryFile("w", suffix=".json") as config_file, \
-            tempfile.TemporaryFile("w+") as log:
-        json.dump(config, config_file)
-        config_file.flush()
-        # A session of its own: Ctrl-C on the terminal reaches this script, which stops robotd.
-        daemon = subprocess.Popen(["/bin/sh", "-c", GUARD, "robotd-guard", args.robotd, "--config", config_file.name],
-                                  stdin=subprocess.PIPE, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
-        status = 0
+    status = 0
+    with RobotdDaemon(args.robotd, [sim_arm()]) as daemon:
         try:
-            check(args, domain)
+            check(args, daemon.domain_id)
         except (AssertionError, subprocess.TimeoutExpired) as failure:
             print(f"FAILED: {failure}")
             status = 1
-        finally:
-            daemon.stdin.close()  # the guard stops robotd
-            try:
-                daemon.wait(timeout=25)
-            except subprocess.TimeoutExpired:
-                os.killpg(daemon.pid, signal.SIGKILL)
-                daemon.wait()
-        if daemon.returncode != 0:
-            print(f"FAILED: robotd exited with status {daemon.returncode} (128 + n: killed by signal n)")
-            status = 1
-        if status != 0:
-            log.seek(0)
-            print("robotd's log:\n" + log.read())
+    if daemon.returncode != 0:
+        print(f"FAILED: robotd exited with status {daemon.returncode} (128 + n: killed by signal n)")
+        status = 1
+    if status != 0:
+        print("robotd's log:\n" + daemon.log())
     return status
 
 

@@ -45,6 +45,7 @@ class InstallTest(unittest.TestCase):
             "include/robotd/client.hpp",
             "include/robotd/robotd.h",
             "share/robotd/examples/move_arm.c",
+            "share/robotd/examples/move_arm.py",
             "include/robotd/messages.hpp",
             "include/robotd/driver/driver.hpp",
             "etc/robotd/robotd.json",
@@ -53,6 +54,18 @@ class InstallTest(unittest.TestCase):
         ]
         missing = [path for path in expected if not (self.prefix / path).exists()]
         self.assertEqual(missing, [], f"not installed under {self.prefix}")
+
+    def test_the_installed_python_package_imports_and_finds_its_library(self):
+        if ARGS.sanitize:
+            self.skipTest("python3 is not instrumented: it cannot load a sanitized librobotd_c")
+        package = self.prefix / ARGS.python_dir
+        self.assertTrue((package / "robotd" / "session.py").exists(), f"no robotd package in {package}")
+        environment = dict(self.env, PYTHONPATH=str(package), PYTHONDONTWRITEBYTECODE="1")
+        environment.pop("ROBOTD_C_LIBRARY", None)
+        result = subprocess.run([sys.executable, "-c", "import robotd; print(robotd.__version__)"],
+                                capture_output=True, text=True, env=environment)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertRegex(result.stdout, r"^\d+\.\d+\.\d+$")
 
     def test_installed_config_is_valid(self):
         result = subprocess.run([str(self.prefix / "bin/robotd"), "--check-config", "--config",
@@ -108,6 +121,7 @@ if __name__ == "__main__":
     parser.add_argument("--build-dir", required=True)
     parser.add_argument("--prefix", required=True)
     parser.add_argument("--libdir", required=True)
+    parser.add_argument("--python-dir", required=True, help="where the Python package is installed, in the prefix")
     parser.add_argument("--cxx-compiler", required=True, help="the compiler robotd was built with")
     parser.add_argument("--sanitize", default="",
                         help="the sanitizers robotd was built with (ROBOTD_SANITIZE): the consumer needs them too")

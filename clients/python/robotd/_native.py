@@ -1,0 +1,225 @@
+"""librobotd_c through ctypes: the library, its structs and functions (robotd/robotd.h), and the
+conversion of its results into this package's types. Nothing here is public."""
+import ctypes
+import os
+from ctypes import POINTER, Structure, c_bool, c_char, c_char_p, c_double, c_float, c_int, c_int32, c_int64
+from ctypes import c_size_t, c_uint64, c_void_p
+
+from . import errors
+from .types import DeviceInfo, DeviceState, DeviceStatus, JointState
+
+C_API_VERSION = 1  # the robotd/robotd.h this module mirrors
+MAX_JOINTS = 64
+NAME_CAPACITY = 64
+UUID_CAPACITY = 40
+TEXT_CAPACITY = 256
+BUFFER_TOO_SMALL = 7
+
+_Name = c_char * NAME_CAPACITY
+_Text = c_char * TEXT_CAPACITY
+_Doubles = c_double * MAX_JOINTS
+_Enum = c_int  # a C enum whose values fit an int
+
+
+class ClientOptions(Structure):
+    _fields_ = [("domain_id", c_int32), ("network_interface", c_char_p), ("peers", c_char_p),
+                ("multicast", c_bool), ("node_name", c_char_p), ("service_timeout_ms", c_int32)]
+
+
+class DeviceInfoStruct(Structure):
+    _fields_ = [("name", _Name), ("driver", _Name), ("model", _Name), ("state", _Enum), ("rate_hz", c_double),
+                ("joint_count", c_size_t), ("joint_names", _Name * MAX_JOINTS), ("position_min", _Doubles),
+                ("position_max", _Doubles), ("velocity_max", _Doubles), ("effort_max", _Doubles)]
+
+
+class SessionRequest(Structure):
+    _fields_ = [("device", c_char_p), ("motor_ids", POINTER(c_int32)), ("motor_count", c_size_t), ("mode", _Enum),
+                ("on_timeout", _Enum), ("timeout_ms", c_int32), ("default_kp", POINTER(c_float)),
+                ("default_kd", POINTER(c_float)), ("on_release", _Enum)]
+
+
+class Command(Structure):
+    _fields_ = [("motor_ids", POINTER(c_int32)), ("count", c_size_t), ("positions", POINTER(c_float)),
+                ("velocities", POINTER(c_float)), ("kp", POINTER(c_float)), ("kd", POINTER(c_float)),
+                ("torques", POINTER(c_float))]
+
+
+class JointStateStruct(Structure):
+    _fields_ = [("device", _Name), ("stamp_ns", c_int64), ("joint_count", c_size_t), ("names", _Name * MAX_JOINTS),
+                ("position", _Doubles), ("velocity", _Doubles), ("effort", _Doubles)]
+
+
+class DeviceStatusStruct(Structure):
+    _fields_ = [("device", _Name), ("stamp_ns", c_int64), ("state", _Enum), ("state_text", _Text),
+                ("fault_code", c_int32), ("fault_text", _Text), ("estop_engaged", c_bool),
+                ("loop_period_p50_us", c_float), ("loop_period_p99_us", c_float), ("loop_period_max_us", c_float),
+                ("loop_overruns", c_uint64), ("commands_accepted", c_uint64), ("commands_rejected", c_uint64)]
+
+
+JointStateCallback = ctypes.CFUNCTYPE(None, POINTER(JointStateStruct), c_void_p)
+DeviceStatusCallback = ctypes.CFUNCTYPE(None, POINTER(DeviceStatusStruct), c_void_p)
+
+_Status = c_int
+_Handle = c_void_p
+# name: (result type, argument types)
+_PROTOTYPES = {
+    "robotd_last_error": (c_char_p, []),
+    "robotd_status_name": (c_char_p, [_Status]),
+    "robotd_c_api_version": (c_int, []),
+    "robotd_version": (c_char_p, []),
+    "robotd_client_options_init": (_Status, [POINTER(ClientOptions)]),
+    "robotd_connect": (_Status, [POINTER(ClientOptions), POINTER(_Handle)]),
+    "robotd_disconnect": (None, [_Handle]),
+    "robotd_list_devices": (_Status, [_Handle, POINTER(DeviceInfoStruct), c_size_t, POINTER(c_size_t)]),
+    "robotd_session_request_init": (_Status, [POINTER(SessionRequest)]),
+    "robotd_request_control": (_Status, [_Handle, POINTER(SessionRequest), POINTER(_Handle)]),
+    "robotd_session_uuid": (_Status, [_Handle, POINTER(c_char_p)]),
+    "robotd_session_device": (_Status, [_Handle, POINTER(c_char_p)]),
+    "robotd_session_motor_ids": (_Status, [_Handle, POINTER(c_int32), c_size_t, POINTER(c_size_t)]),
+    "robotd_session_mode": (_Status, [_Handle, POINTER(_Enum)]),
+    "robotd_session_timeout_behavior": (_Status, [_Handle, POINTER(_Enum)]),
+    "robotd_release": (_Status, [_Handle, _Enum]),
+    "robotd_release_by_uuid": (_Status, [_Handle, c_char_p, _Enum]),
+    "robotd_session_free": (None, [_Handle]),
+    "robotd_send_command": (_Status, [_Handle, POINTER(Command)]),
+    "robotd_keepalive": (_Status, [_Handle]),
+    "robotd_next_joint_state": (_Status, [_Handle, c_char_p, c_int32, POINTER(JointStateStruct)]),
+    "robotd_next_device_status": (_Status, [_Handle, c_char_p, c_int32, POINTER(DeviceStatusStruct)]),
+    "robotd_subscribe_joint_states": (_Status, [_Handle, JointStateCallback, c_void_p, POINTER(_Handle)]),
+    "robotd_subscribe_device_status": (_Status, [_Handle, DeviceStatusCallback, c_void_p, POINTER(_Handle)]),
+    "robotd_unsubscribe": (_Status, [_Handle]),
+    "robotd_estop": (_Status, [_Handle, c_char_p, c_char_p]),
+    "robotd_reset_estop": (_Status, [_Handle, c_char_p]),
+    # The result is a char* the library allocated: kept as a void pointer, so that it can be freed.
+    "robotd_device_call": (_Status, [_Handle, c_char_p, c_char_p, c_char_p, c_int32, POINTER(c_void_p)]),
+    "robotd_free_string": (None, [c_void_p]),
+}
+
+
+def _library_paths():
+    """Where to look for librobotd_c, most specific first: $ROBOTD_C_LIBRARY, the path the
+    install rules wrote into _installed.py, then the dynamic loader's own search."""
+    if os.environ.get("ROBOTD_C_LIBRARY"):
+        return [os.environ["ROBOTD_C_LIBRARY"]]
+    paths = []
+    try:
+        from ._installed import LIBRARY  # written by the install rules only
+        paths.append(LIBRARY)
+    except ImportError:
+        pass
+    paths.append(f"librobotd_c.so.{C_API_VERSION}")
+    return paths
+
+
+def _load():
+    failures = []
+    for path in _library_paths():
+        try:
+            library = ctypes.CDLL(path)
+            break
+        except OSError as error:
+            failures.append(str(error))
+    else:
+        raise ImportError("robotd: cannot load the robotd C library (" + "; ".join(failures) + "). Install "
+                          "robotd, or set ROBOTD_C_LIBRARY to the path of librobotd_c.so")
+    for name, (result, arguments) in _PROTOTYPES.items():
+        function = getattr(library, name)
+        function.restype = result
+        function.argtypes = arguments
+    version = library.robotd_c_api_version()
+    if version != C_API_VERSION:
+        raise ImportError(f"robotd: the C library at {library._name} has C API version {version}; this "
+                          f"package needs version {C_API_VERSION}")
+    return library
+
+
+lib = _load()
+
+
+def text(raw):
+    """A C string as str: bytes (a char* result, or a char[] field, which ctypes hands out as
+    bytes) or a char[] element of a 2-D field. robotd's texts are UTF-8."""
+    if raw is None:
+        return ""
+    if isinstance(raw, ctypes.Array):
+        raw = raw.value
+    return raw.decode("utf-8", errors="replace")
+
+
+def check(status):
+    """Raises the exception for a failed call, with the library's message for this thread."""
+    if status == 0:
+        return
+    message = text(lib.robotd_last_error())
+    exception = errors.BY_STATUS.get(status, errors.RobotdError)
+    raise exception(text(lib.robotd_status_name(status)), message)
+
+
+def optional_text(value):
+    """str (or None) as the const char* the C API takes (NULL for None)."""
+    return None if value is None else str(value).encode("utf-8")
+
+
+def milliseconds(seconds, what):
+    if seconds is None or seconds < 0:
+        raise ValueError(f"{what} is a duration in seconds, >= 0 (got {seconds!r})")
+    return int(round(seconds * 1000))
+
+
+def floats(values, what, count=None):
+    """A sequence of numbers as a C float array, or None for None."""
+    if values is None:
+        return None
+    try:
+        array = (c_float * len(values))(*values)
+    except TypeError:
+        raise TypeError(f"{what}: a sequence of numbers, not {type(values).__name__}") from None
+    if count is not None and len(values) != count:
+        raise ValueError(f"{what}: {len(values)} values for {count} motors")
+    return array
+
+
+def int32s(values, what):
+    if values is None:
+        return None
+    try:
+        return (c_int32 * len(values))(*values)
+    except TypeError:
+        raise TypeError(f"{what}: a sequence of integers, not {type(values).__name__}") from None
+
+
+def pointer(array, element):
+    """A ctypes array as the `element*` a struct field holds (None stays NULL). The array must
+    outlive the call the struct is passed to."""
+    return None if array is None else ctypes.cast(array, POINTER(element))
+
+
+def _vector(array, count):
+    return tuple(array[:count])
+
+
+def device_info(raw):
+    count = raw.joint_count
+    return DeviceInfo(name=text(raw.name), driver=text(raw.driver), model=text(raw.model),
+                      state=DeviceState(raw.state), rate_hz=raw.rate_hz,
+                      joint_names=tuple(text(raw.joint_names[j]) for j in range(count)),
+                      position_min=_vector(raw.position_min, count), position_max=_vector(raw.position_max, count),
+                      velocity_max=_vector(raw.velocity_max, count), effort_max=_vector(raw.effort_max, count))
+
+
+def joint_state(raw):
+    count = raw.joint_count
+    return JointState(device=text(raw.device), stamp_ns=raw.stamp_ns,
+                      names=tuple(text(raw.names[j]) for j in range(count)),
+                      position=_vector(raw.position, count), velocity=_vector(raw.velocity, count),
+                      effort=_vector(raw.effort, count))
+
+
+def device_status(raw):
+    return DeviceStatus(device=text(raw.device), stamp_ns=raw.stamp_ns, state=DeviceState(raw.state),
+                        state_text=text(raw.state_text), fault_code=raw.fault_code,
+                        fault_text=text(raw.fault_text), estop_engaged=bool(raw.estop_engaged),
+                        loop_period_p50_us=raw.loop_period_p50_us, loop_period_p99_us=raw.loop_period_p99_us,
+                        loop_period_max_us=raw.loop_period_max_us, loop_overruns=raw.loop_overruns,
+                        commands_accepted=raw.commands_accepted, commands_rejected=raw.commands_rejected)
+

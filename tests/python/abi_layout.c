@@ -1,0 +1,54 @@
+/* Prints the size of each struct of robotd/robotd.h and the offset of each of its fields, as
+ * JSON, so that the Python package's ctypes mirror of them (clients/python/robotd/_native.py) can
+ * be checked against what the C compiler lays out. */
+#include <robotd/robotd.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#define FIELD(type, field) printf("%s\"%s\": %zu", first ? "" : ", ", #field, offsetof(type, field)), first = 0
+
+#define STRUCT(type, fields)                                                           \
+  do {                                                                                 \
+    int first = 1;                                                                     \
+    printf("%s\"%s\": {\"size\": %zu, \"fields\": {", separator, #type, sizeof(type)); \
+    fields;                                                                            \
+    printf("}}");                                                                      \
+    separator = ", ";                                                                  \
+  } while (0)
+
+int main(void) {
+  const char* separator = "";
+  printf("{");
+  STRUCT(robotd_client_options,
+         (FIELD(robotd_client_options, domain_id), FIELD(robotd_client_options, network_interface),
+          FIELD(robotd_client_options, peers), FIELD(robotd_client_options, multicast),
+          FIELD(robotd_client_options, node_name), FIELD(robotd_client_options, service_timeout_ms)));
+  STRUCT(robotd_device_info,
+         (FIELD(robotd_device_info, name), FIELD(robotd_device_info, driver), FIELD(robotd_device_info, model),
+          FIELD(robotd_device_info, state), FIELD(robotd_device_info, rate_hz), FIELD(robotd_device_info, joint_count),
+          FIELD(robotd_device_info, joint_names), FIELD(robotd_device_info, position_min),
+          FIELD(robotd_device_info, position_max), FIELD(robotd_device_info, velocity_max),
+          FIELD(robotd_device_info, effort_max)));
+  STRUCT(robotd_session_request, (FIELD(robotd_session_request, device), FIELD(robotd_session_request, motor_ids),
+                                  FIELD(robotd_session_request, motor_count), FIELD(robotd_session_request, mode),
+                                  FIELD(robotd_session_request, on_timeout), FIELD(robotd_session_request, timeout_ms),
+                                  FIELD(robotd_session_request, default_kp), FIELD(robotd_session_request, default_kd),
+                                  FIELD(robotd_session_request, on_release)));
+  STRUCT(robotd_command, (FIELD(robotd_command, motor_ids), FIELD(robotd_command, count),
+                          FIELD(robotd_command, positions), FIELD(robotd_command, velocities),
+                          FIELD(robotd_command, kp), FIELD(robotd_command, kd), FIELD(robotd_command, torques)));
+  STRUCT(robotd_joint_state,
+         (FIELD(robotd_joint_state, device), FIELD(robotd_joint_state, stamp_ns),
+          FIELD(robotd_joint_state, joint_count), FIELD(robotd_joint_state, names), FIELD(robotd_joint_state, position),
+          FIELD(robotd_joint_state, velocity), FIELD(robotd_joint_state, effort)));
+  STRUCT(
+      robotd_device_status,
+      (FIELD(robotd_device_status, device), FIELD(robotd_device_status, stamp_ns), FIELD(robotd_device_status, state),
+       FIELD(robotd_device_status, state_text), FIELD(robotd_device_status, fault_code),
+       FIELD(robotd_device_status, fault_text), FIELD(robotd_device_status, estop_engaged),
+       FIELD(robotd_device_status, loop_period_p50_us), FIELD(robotd_device_status, loop_period_p99_us),
+       FIELD(robotd_device_status, loop_period_max_us), FIELD(robotd_device_status, loop_overruns),
+       FIELD(robotd_device_status, commands_accepted), FIELD(robotd_device_status, commands_rejected)));
+  printf("}\n");
+  return 0;
+}

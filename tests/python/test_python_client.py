@@ -1,0 +1,235 @@
+"""The robotd Python package (clients/python) against a real robotd driving a simulated arm on a
+DDS domain of its own. CTest runs each TestCase as python.<TestCase> (tests/python/CMakeLists.txt)
+with PYTHONPATH, ROBOTD_C_LIBRARY, ROBOTD_BINARY, ROBOTD_ABI_LAYOUT and ROBOTD_PYTHON_EXAMPLE set."""
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+import unittest
+from ctypes import sizeof
+from pathlib import Path
+
+import robotd
+from robotd import _native
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from robotd_daemon import RobotdDaemon, sim_arm  # noqa: E402  (tests/support)
+from test_domain import claim_domain_id  # noqa: E402
+
+ROBOTD = os.environ.get("ROBOTD_BINARY", "")
+
+
+class AbiLayoutTest(unittest.TestCase):
+    """ctypes' structs are laid out exactly as the C compiler lays out robotd/robotd.h's."""
+
+    def test_every_struct_and_field_matches_the_header(self):
+        layout = json.loads(subprocess.run([os.environ["ROBOTD_ABI_LAYOUT"]], capture_output=True, text=True,
+                                           check=True).stdout)
+        mirrors = {"robotd_client_options": _native.ClientOptions, "robotd_device_info": _native.DeviceInfoStruct,
+                   "robotd_session_request": _native.SessionRequest, "robotd_command": _native.Command,
+                   "robotd_joint_state": _native.JointStateStruct,
+                   "robotd_device_status": _native.DeviceStatusStruct}
+        self.assertEqual(set(layout), set(mirrors))
+        for name, mirror in mirrors.items():
+            with self.subTest(struct=name):
+                self.assertEqual(sizeof(mirror), layout[name]["size"])
+                offsets = {field: getattr(mirror, field).offset for field, _ in mirror._fields_}
+                self.assertEqual(offsets, layout[name]["fields"])
+
+
+class WithoutRobotdTest(unittest.TestCase):
+    """What a caller gets before anything reaches robotd."""
+
+    def test_versions(self):
+        self.assertEqual(robotd.C_API_VERSION, 1)
+        self.assertRegex(robotd.__version__, r"^\d+\.\d+\.\d+$")
+
+    def test_no_robotd_on_the_domain_is_not_available_and_says_what_to_check(self):
+        domain_id, lock = claim_domain_id()
+        with lock, robotd.Client(domain_id, service_timeout=0.3) as client:
+            with self.assertRaises(robotd.NotAvailable) as raised:
+                client.devices()
+            self.assertIn("is robotd running", str(raised.exception))
+            self.assertEqual(raised.exception.status, "ROBOTD_NOT_AVAILABLE")
+            self.assertIsInstance(raised.exception, ConnectionError)
+
+    def test_bad_arguments_name_what_is_wrong_and_what_is_expected(self):
+        with self.assertRaises(robotd.InvalidArgument) as raised:
+            robotd.Client(domain_id=500)
+        self.assertIn("out of range", str(raised.exception))
+        with self.assertRaisesRegex(ValueError, "'bogus' is not a Mode .*position, torque, mixed"):
+            robotd.Session(device="arm", mode="bogus", client=object())
+        with self.assertRaisesRegex(ValueError, "timeout is a duration in seconds"):
+            robotd.Client(service_timeout=-1)
+
+
+class ClientTest(unittest.TestCase):
+    """Sessions, commands, state, callbacks, safety and device operations, for real."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.daemon = RobotdDaemon(ROBOTD, [sim_arm()]).__enter__()
+        cls.daemon.wait_until_serving()
+        cls.client = robotd.Client(cls.daemon.domain_id, node_name="python_test")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.daemon.__exit__(None, None, None)
+
+    def test_devices_describe_the_arm_and_its_limits(self):
+        [arm] = self.client.devices()
+        self.assertEqual((arm.name, arm.driver, arm.state), ("arm", "sim", robotd.DeviceState.RUNNING))
+        self.assertEqual(arm.joint_names, ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6"))
+        self.assertEqual(len(arm.position_max), 6)
+        self.assertTrue(all(low < high for low, high in zip(arm.position_min, arm.position_max)))
+        self.assertEqual(arm.rate_hz, 1000)
+
+    def test_joint_states_come_one_after_another(self):
+        states = self.client.joint_states("arm")
+        first, second = next(states), next(states)
+        self.assertEqual(first.device, "arm")
+        self.assertEqual(len(first.position), 6)
+        self.assertGreater(second.stamp_ns, first.stamp_ns)
+
+    def test_a_session_moves_its_motors_and_leaving_the_with_block_releases_them(self):
+        start = self.client.joint_state("arm")
+        target = (start.position[0] + 0.3, start.position[1] - 0.2)
+        with self.client.session(device="arm", motors=[0, 1], timeout=0.5) as session:
+            self.assertEqual(session.motors, (0, 1))
+            self.assertEqual(session.mode, robotd.Mode.POSITION)
+            self.assertRegex(session.uuid, r"^[0-9a-f-]{36}$")
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline:
+                session.command(positions=target)
+                state = self.client.joint_state("arm")
+                if abs(state.position[0] - target[0]) < 0.01 and abs(state.position[1] - target[1]) < 0.01:
+                    break
+                time.sleep(0.01)
+            self.assertAlmostEqual(state.position[0], target[0], delta=0.01)
+            self.assertAlmostEqual(state.position[1], target[1], delta=0.01)
+            self.assertAlmostEqual(state.position[2], start.position[2], delta=1e-6)
+        # Released: the motors are free for the next session.
+        with self.client.session(device="arm", motors=[0, 1]):
+            pass
+
+    def test_a_session_held_elsewhere_is_refused_naming_the_holder(self):
+        with self.client.session(device="arm", motors=[2], timeout=2.0):
+            with self.assertRaises(robotd.Refused) as raised:
+                self.client.session(device="arm", motors=[2, 3])
+        self.assertIn("motor(s) 2 held by node 'python_test'", str(raised.exception))
+
+    def test_malformed_commands_raise_before_anything_is_sent(self):
+        with self.client.session(device="arm", motors=[4, 5], timeout=1.0) as session:
+            with self.assertRaisesRegex(ValueError, "positions: 1 values for 2 motors"):
+                session.command(positions=[0.1])
+            with self.assertRaisesRegex(TypeError, "positions: a sequence of numbers"):
+                session.command(positions=0.1)
+            session.release()
+            with self.assertRaisesRegex(ValueError, "is closed|released"):
+                session.command(positions=[0.0, 0.0])
+
+    def test_a_silent_session_ends_at_its_timeout(self):
+        session = self.client.session(device="arm", motors=[3], timeout=0.2, on_timeout="keep")
+        time.sleep(0.6)
+        with self.client.session(device="arm", motors=[3]):  # free again
+            pass
+        session.close()
+
+    def test_a_session_without_a_client_connects_one_from_the_environment(self):
+        os.environ["ROBOTD_DOMAIN_ID"] = str(self.daemon.domain_id)
+        try:
+            with robotd.Session(device="arm", motors=[5], timeout=0.5) as session:
+                session.keepalive()
+                self.assertEqual(session.device, "arm")
+        finally:
+            del os.environ["ROBOTD_DOMAIN_ID"]
+
+    def test_callbacks_get_every_sample_until_cancelled(self):
+        stamps, got_some = [], threading.Event()
+
+        def on_state(state):
+            stamps.append(state.stamp_ns)
+            if len(stamps) >= 20:
+                got_some.set()
+
+        with self.client.on_joint_states(on_state) as subscription:
+            self.assertTrue(got_some.wait(5), "no joint states reached the callback")
+        self.assertFalse(subscription.active)
+        count = len(stamps)
+        time.sleep(0.1)
+        self.assertEqual(len(stamps), count, "the callback ran after cancel()")
+        self.assertEqual(stamps, sorted(stamps))
+
+    def test_a_callback_that_raises_is_reported_and_the_subscription_goes_on(self):
+        calls = []
+
+        def failing(_state):
+            calls.append(1)
+            raise RuntimeError("a bug in the callback")
+
+        with self.client.on_joint_states(failing):
+            deadline = time.monotonic() + 5
+            while len(calls) < 3 and time.monotonic() < deadline:
+                time.sleep(0.01)
+        self.assertGreaterEqual(len(calls), 3)
+
+    def test_estop_latches_until_reset(self):
+        self.client.estop("arm", reason="python test")
+        deadline = time.monotonic() + 3
+        while self.client.device_status("arm").state != robotd.DeviceState.ESTOP and time.monotonic() < deadline:
+            time.sleep(0.02)
+        status = self.client.device_status("arm")
+        self.assertEqual(status.state, robotd.DeviceState.ESTOP)
+        self.assertTrue(status.estop_engaged)
+        self.client.reset_estop("arm")
+        deadline = time.monotonic() + 3
+        while self.client.device_status("arm").state != robotd.DeviceState.RUNNING and time.monotonic() < deadline:
+            time.sleep(0.02)
+        self.assertEqual(self.client.device_status("arm").state, robotd.DeviceState.RUNNING)
+
+    def test_device_status_reports_loop_timing_and_counters(self):
+        status = self.client.device_status("arm")
+        self.assertEqual(status.device, "arm")
+        self.assertGreater(status.loop_period_p50_us, 500)
+        self.assertLess(status.loop_period_p50_us, 1500)
+        self.assertGreaterEqual(status.commands_accepted, 0)
+
+    def test_device_call_returns_json_and_a_refusal_carries_the_drivers_words(self):
+        state = self.client.call("arm", "state")
+        self.assertEqual(len(state["joints"]), 6)
+        with self.assertRaises(robotd.Refused) as raised:
+            self.client.call("arm", "no_such_op", speed=1)
+        self.assertIn('unknown op "no_such_op" (the sim driver has:', str(raised.exception))
+
+    def test_release_by_uuid_frees_a_session_held_by_another_client(self):
+        with robotd.Client(self.daemon.domain_id, node_name="other") as other:
+            held = other.session(device="arm", motors=[1], timeout=5.0)
+            self.client.release(held.uuid, "keep")
+            with self.client.session(device="arm", motors=[1]):
+                pass
+            held.close()
+
+
+class ExampleTest(unittest.TestCase):
+    """clients/python/examples/move_arm.py, the Python twin of the C++ example, against robotd."""
+
+    def test_the_example_moves_every_joint_and_releases(self):
+        with RobotdDaemon(ROBOTD, [sim_arm()]) as daemon:
+            daemon.wait_until_serving()
+            result = subprocess.run([sys.executable, os.environ["ROBOTD_PYTHON_EXAMPLE"]], capture_output=True,
+                                    text=True, timeout=60,
+                                    env=dict(os.environ, ROBOTD_DOMAIN_ID=str(daemon.domain_id)))
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr + daemon.log())
+        self.assertRegex(result.stdout, r"session [0-9a-f-]{36} on 6 motors")
+        moves = [float(moved) for moved in
+                 (line.split("->")[1].split()[0] for line in result.stdout.splitlines() if "->" in line)]
+        self.assertEqual(len(moves), 6, result.stdout)
+        self.assertTrue(all(abs(position - 0.5) < 0.02 for position in moves), result.stdout)
+        self.assertIn("released", result.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
