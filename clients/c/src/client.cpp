@@ -46,8 +46,9 @@ robotd_status robotd_list_devices(robotd_client* client, robotd_device_info* dev
                                         ": expected an array of capacity robotd_device_info");
     }
     const auto listed = take(handle.client->list_devices());
-    const std::size_t filled = std::min(listed.size(), capacity);
-    for (std::size_t i = 0; i < filled; ++i) to_c(listed[i], devices[i]);
+    if (devices != nullptr) {  // NULL only with capacity 0 (checked above): a query of the count
+      for (std::size_t i = 0; i < std::min(listed.size(), capacity); ++i) to_c(listed[i], devices[i]);
+    }
     out_count = listed.size();
     if (listed.size() > capacity) {
       fail(ROBOTD_BUFFER_TOO_SMALL,
