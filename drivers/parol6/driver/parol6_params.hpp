@@ -18,7 +18,10 @@ struct Parol6Params {
   std::string model = "PAROL6";
   transport::SerialConfig serial;
   double exchange_rate_hz = 100;   // frames per second to the board (it answers each)
-  int reply_timeout_ms = 100;      // no reply this long while sending: the link is lost
+  // No reply this long while sending: the link is lost. Below robotd's feedback_timeout_ms
+  // (100 ms), so that a silent board is a lost link the driver names and reconnects, not the loop's
+  // generic "no feedback" fault racing it on the same tick.
+  int reply_timeout_ms = 50;
   int connect_timeout_ms = 500;    // the board must answer this soon after opening the port
   bool home_on_connect = false;    // run the homing sequence when the link comes up
   int gripper_id = 0;              // the SSG-48's CAN node id, 0 … 15

@@ -36,7 +36,10 @@ struct PiperParams {
   transport::CanLinkConfig can;
   bool check_interface = true;    // the SDK's judge_flag: interface up at 1 Mbit/s (SocketCAN only)
   int connect_timeout_ms = 500;   // arm feedback must arrive this soon after opening the link
-  int feedback_timeout_ms = 100;  // no 0x2A1 or 0x2A5–0x2A7 this long: the link is lost
+  // No 0x2A1 or 0x2A5–0x2A7 this long: the link is lost. Below robotd's feedback_timeout_ms
+  // (100 ms), so that the driver names and reconnects a silent arm before the loop's generic
+  // "no feedback" fault fires on the same tick.
+  int feedback_timeout_ms = 50;
   int reply_timeout_ms = 500;     // queries and settings wait this long for the arm's answer
   double command_rate_hz = 200;   // joint command groups per second on the bus
   int speed_percent = 100;        // 0x151 byte 2 for MOVE J streaming
