@@ -11,7 +11,8 @@ the loops keep their timing against a cyclictest thread at the same priority and
 alongside for the last 20 s (the loops' statistics window) — the same machine, the same neighbours, the same process spawning
 (on a kernel without PREEMPT_RT an exec can hold off every real-time thread for milliseconds):
 the wake-up p99 of all four loops' samples together within the loop bench's target of
-1.25 × cyclictest's. Overruns in the window (wake-up plus the tick's work past the period) are
+1.25 × cyclictest's, or within 25 µs of it: at a few tens of µs (an idle 2-core VM) the ratio is
+noise, and a 1 ms period does not notice 25 µs. Overruns in the window (wake-up plus the tick's work past the period) are
 reported per device next to cyclictest's late wake-ups, not judged: a 20 s window holds a handful
 of either, too few to compare on a shared VM. Exit status 1 if any check fails."""
 import json
@@ -28,6 +29,7 @@ FAULT_EVERY_S = 3.0
 CLIENT_TIMEOUT_MS = 500  # robotd_bench_stream's session timeout
 RSS_GROWTH_LIMIT_KB = 2048  # after warm-up; a leak of a few hundred bytes per fault would cross it in 10 min
 WAKE_RATIO_LIMIT = 1.25  # bench/run's wake_p99_ratio target
+WAKE_SLACK_US = 25  # ... unless the p99s are this close: a 20 s ratio of ~20 µs figures is noise
 WINDOW_TICKS = 20000  # the loops' statistics window: the last 20 s, which cyclictest runs alongside
 
 
@@ -195,8 +197,10 @@ def main():
         figures["soak_wake_p99_ratio"] = pooled_ratio
         figures["soak_overruns_per_device_min"] = round(overruns_per_device_min, 2)
         rows.append(b.distribution_row("all loops", all_loops) + [pooled_ratio, f"{overruns_per_device_min:.2f}"])
-        if pooled_ratio is not None and pooled_ratio > WAKE_RATIO_LIMIT:
-            checks.append(f"wake p99 {all_loops['p99']:.0f} µs is {pooled_ratio} × cyclictest's {base['p99']:.0f} µs")
+        if (pooled_ratio is not None and pooled_ratio > WAKE_RATIO_LIMIT
+                and all_loops["p99"] - base["p99"] > WAKE_SLACK_US):
+            checks.append(f"wake p99 {all_loops['p99']:.0f} µs is {pooled_ratio} × cyclictest's {base['p99']:.0f} µs "
+                          f"(limit {WAKE_RATIO_LIMIT} ×, or within {WAKE_SLACK_US} µs)")
         figures["soak_baseline_wake_p99_us"] = base["p99"]
         figures["soak_baseline_late_per_min"] = round(late_base, 2)
         print(b.table(b.DISTRIBUTION_HEADERS + ["× cyclictest p99", "overruns/min"],
