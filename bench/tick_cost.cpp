@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
   try {
     for (int i = 1; i + 3 < argc; ++i) {
       if (std::strcmp(argv[i], "--callgrind-ticks") == 0 && std::strcmp(argv[i + 2], "--joints") == 0) {
-        return callgrind_ticks(std::atoi(argv[i + 1]), std::atoi(argv[i + 3]));
+        return callgrind_ticks(std::stoi(argv[i + 1]), std::stoi(argv[i + 3]));
       }
     }
     benchmark::Initialize(&argc, argv);

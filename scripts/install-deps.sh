@@ -12,20 +12,23 @@ packages=(
   cyclonedds-dev cyclonedds-tools
   libeigen3-dev libspdlog-dev nlohmann-json3-dev libsystemd-dev libcli11-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
-  rt-tests python3 systemd
+  rt-tests python3 python3-matplotlib systemd
   clang-format clang-tidy valgrind
   clang libclang-rt-14-dev
 )
 
-missing=()
-for pkg in "${packages[@]}"; do
-  if [[ $(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null) != installed ]]; then
-    missing+=("$pkg")
-  fi
-done
+# Installed when the archive has them (clang-tidy-22 comes from bookworm-security): lint runs
+# three times faster with it and falls back to clang-tidy (14) without it.
+optional=(clang-tidy-22)
 
-if ((${#missing[@]} == 0)); then
-  echo "install-deps: all ${#packages[@]} packages already installed"
+installed() { [[ $(dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null) == installed ]]; }
+missing=()
+for pkg in "${packages[@]}"; do installed "$pkg" || missing+=("$pkg"); done
+missing_optional=()
+for pkg in "${optional[@]}"; do installed "$pkg" || missing_optional+=("$pkg"); done
+
+if ((${#missing[@]} + ${#missing_optional[@]} == 0)); then
+  echo "install-deps: all $((${#packages[@]} + ${#optional[@]})) packages already installed"
   exit 0
 fi
 
@@ -35,6 +38,14 @@ if ((EUID != 0)); then
   sudo=(sudo)
 fi
 
-echo "install-deps: installing ${missing[*]}"
 "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+for pkg in "${missing_optional[@]}"; do
+  if apt-cache show "$pkg" >/dev/null 2>&1; then
+    missing+=("$pkg")
+  else
+    echo "install-deps: $pkg is not in the archive; going on without it"
+  fi
+done
+((${#missing[@]} > 0)) || exit 0
+echo "install-deps: installing ${missing[*]}"
 "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"

@@ -76,6 +76,7 @@ std::string device_status_text(const robotd::DeviceStatus& status) {
   const robotd::LoopStatistics& loop = status.loop;
   std::string text = status.device + "  " + state_text(status) + "\n";
   std::vector<std::string> driver_values;
+  driver_values.reserve(status.driver_values.size());
   for (const auto& value : status.driver_values) driver_values.push_back(value.key + "=" + value.value);
   text += labelled("driver", status.driver + (driver_values.empty() ? "" : ": " + join(driver_values, " ")));
   text += labelled("fault", status.fault_code == 0 && status.fault_text.empty()

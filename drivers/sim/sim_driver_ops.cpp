@@ -68,10 +68,10 @@ std::optional<Error> unexpected_arguments(std::string_view op, const nlohmann::j
   return errors.empty() ? std::nullopt : std::optional(invalid_arguments(op, errors));
 }
 
-/// A missing args value means no arguments.
-const nlohmann::json& args_object(const nlohmann::json& args) {
+/// What a missing args value stands for: no arguments.
+const nlohmann::json& no_arguments() {
   static const nlohmann::json kNoArguments = nlohmann::json::object();
-  return args.is_null() ? kNoArguments : args;
+  return kNoArguments;
 }
 
 const char* command_kind_name(JointCommandKind kind) {
@@ -140,7 +140,7 @@ driver::Diagnostics SimDriver::diagnostics() const {
 Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::json& args) {
   if (!configured_) return make_error(ErrorCode::kRefused, op + ": the sim driver is not configured");
   try {
-    const nlohmann::json& arguments = args_object(args);
+    const nlohmann::json& arguments = args.is_null() ? no_arguments() : args;
     if (op == "stop_feedback") return stop_feedback(arguments);
     if (op == "estop_input") return press_estop_input(arguments);
     if (op == "disconnect") return inject_disconnect(arguments);
@@ -219,7 +219,7 @@ Result<nlohmann::json> SimDriver::set_external_torque(const nlohmann::json& args
   reader.require("torque_nm", "a number (N·m)");
   const std::optional<double> torque_nm = reader.number("torque_nm");
   reader.finish();
-  if (!errors.empty()) return invalid_arguments("set_external_torque", errors);
+  if (!errors.empty() || !joint || !torque_nm) return invalid_arguments("set_external_torque", errors);
   external_torque_nm_[*joint].store(*torque_nm);
   return nlohmann::json{{"joint", params_.joints[*joint].name}, {"external_torque_nm", *torque_nm}};
 }

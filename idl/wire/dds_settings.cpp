@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -96,7 +98,16 @@ std::string to_cyclone_xml(const DdsSettings& settings) {
 DdsSettings dds_settings_from_environment() {
   DdsSettings settings;
   if (const char* id = std::getenv("ROBOTD_DOMAIN_ID"); id != nullptr && *id != '\0') {
-    settings.domain_id = std::atoi(id);
+    const std::string_view text(id);
+    int value = -1;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc{} || end != text.data() + text.size() || value < 0) {
+      // Never fall back to domain 0: that could be another robot's. -1 makes connecting fail.
+      std::cerr << "robotd: ROBOTD_DOMAIN_ID='" << text << "' is not a DDS domain id (expected a whole number 0..230)"
+                << std::endl;
+      value = -1;
+    }
+    settings.domain_id = value;
   }
   if (const char* iface = std::getenv("ROBOTD_DDS_INTERFACE"); iface != nullptr) {
     settings.network_interface = iface;

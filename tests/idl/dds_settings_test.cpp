@@ -146,6 +146,19 @@ TEST(DdsSettingsFromEnvironment, ReadsDomainInterfacePeersAndMulticast) {
   EXPECT_TRUE(settings.multicast);
 }
 
+TEST(DdsSettingsFromEnvironment, MalformedDomainIdIsNeverDomainZero) {
+  for (const char* malformed : {"abc", "7x", "-3", "99999999999"}) {
+    const ScopedEnv id("ROBOTD_DOMAIN_ID", malformed);
+    ::testing::internal::CaptureStderr();
+    const DdsSettings settings = dds_settings_from_environment();
+    const std::string said = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(settings.domain_id, -1) << malformed;
+    EXPECT_NE(said.find("ROBOTD_DOMAIN_ID='" + std::string(malformed) + "' is not a DDS domain id"), std::string::npos)
+        << said;
+    EXPECT_FALSE(Participant::create(settings)) << "connecting must fail, not pick a domain";
+  }
+}
+
 TEST(DdsSettingsFromEnvironment, ReadsTheDdsSecurityFiles) {
   const ScopedEnv ca("ROBOTD_DDS_SECURITY_IDENTITY_CA", "/pki/operator/identity_ca.pem");
   const ScopedEnv permissions("ROBOTD_DDS_SECURITY_PERMISSIONS", "/pki/operator/permissions.p7s");

@@ -6,11 +6,12 @@
 #
 # Own files: those under daemon/ clients/ drivers/ idl/ tests/ bench/ of SOURCE_DIR, which
 # leaves out generated sources (BUILD_DIR and other build trees are not under those folders).
-# Runs in parallel: run-clang-tidy when installed, else xargs -P$(nproc). Environment: JOBS
-# overrides the job count, RUN_CLANG_TIDY names run-clang-tidy (empty: use xargs), ANALYZER_MODE
-# sets the clang-analyzer checks' depth: shallow (default) or deep. Deep follows calls further and
-# takes about twice as long in all (the analyzer alone: 7 s instead of 1.5 s for a driver file);
-# shallow keeps lint.clang_tidy inside CI's time budget (docs/sanitizers.md, "CI").
+# Runs in parallel: run-clang-tidy of the same version when installed, else xargs -P$(nproc).
+# Environment: JOBS overrides the job count, RUN_CLANG_TIDY names run-clang-tidy (empty: use
+# xargs), ANALYZER_MODE sets the clang-analyzer checks' depth: shallow (default) or deep. Deep
+# follows calls further and takes about twice as long in all (the analyzer alone: 7 s instead of
+# 1.5 s for a driver file); shallow keeps lint.clang_tidy inside CI's time budget
+# (docs/sanitizers.md, "CI").
 set -euo pipefail
 
 src=$(realpath "${1:?usage: $0 SOURCE_DIR BUILD_DIR [CLANG_TIDY]}")
@@ -49,7 +50,9 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 start=$SECONDS
 rc=0
-run_clang_tidy=${RUN_CLANG_TIDY-run-clang-tidy}
+# The run-clang-tidy of clang-tidy's own version (clang-tidy-22: run-clang-tidy-22).
+version_suffix=$(basename "$clang_tidy" | sed -nE 's/^clang-tidy(-[0-9]+)$/\1/p')
+run_clang_tidy=${RUN_CLANG_TIDY-run-clang-tidy$version_suffix}
 if [[ -n $run_clang_tidy ]] && command -v "$run_clang_tidy" >/dev/null; then
   # File arguments are regular expressions; anchor each path exactly.
   mapfile -t regexes < <(printf '%s\n' "${files[@]}" | sed 's/[].[^$*+?(){}|\\]/\\&/g; s/.*/^&$/')

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstring>
 #include <string_view>
 #include <vector>
 
@@ -30,7 +29,7 @@ void copy_text(std::string_view text, char (&field)[kCapacity]) {
   if (length < text.size()) {
     while (length > 0 && (static_cast<unsigned char>(text[length]) & 0xC0U) == 0x80U) --length;
   }
-  std::memcpy(field, text.data(), length);
+  text.copy(field, length);
   field[length] = '\0';
 }
 

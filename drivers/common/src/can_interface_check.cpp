@@ -20,7 +20,8 @@ std::string read_line(const std::string& path) {
 /// What `ip -details link show <name>` says, or "" if ip cannot be run.
 std::string ip_details(const std::string& name) {
   const std::string command = "ip -details link show " + name + " 2>/dev/null";
-  FILE* pipe = popen(command.c_str(), "r");  // NOLINT(cert-env33-c): a fixed command; name is an interface name
+  // A fixed command; name is an interface name.
+  FILE* pipe = popen(command.c_str(), "r");  // NOLINT(cert-env33-c,bugprone-command-processor)
   if (pipe == nullptr) return {};
   std::string output;
   char buffer[512];

@@ -30,7 +30,7 @@ enum class Field : std::uint8_t {
   kCurrentQ
 };
 
-inline constexpr units::Quantity quantity(Field field) noexcept {
+constexpr units::Quantity quantity(Field field) noexcept {
   switch (field) {
     case Field::kPosition:
       return units::Quantity::kPosition;
@@ -139,7 +139,7 @@ inline constexpr std::array<Field, 5> kMitFields{Field::kPosition, Field::kVeloc
                                                  Field::kKd};
 
 /// The parameters after [mode, query] in a single-motor frame.
-inline constexpr std::span<const Field> mode_fields(Mode mode) noexcept {
+constexpr std::span<const Field> mode_fields(Mode mode) noexcept {
   switch (mode) {
     case Mode::kStop:
     case Mode::kBrake:
@@ -166,12 +166,12 @@ inline constexpr std::span<const Field> mode_fields(Mode mode) noexcept {
   return {};
 }
 
-inline constexpr bool is_mode(std::uint8_t code) noexcept {
+constexpr bool is_mode(std::uint8_t code) noexcept {
   return code == static_cast<std::uint8_t>(Mode::kStop) ||
          (code >= static_cast<std::uint8_t>(Mode::kBrake) && code <= static_cast<std::uint8_t>(Mode::kMit));
 }
 
-inline constexpr bool is_query(std::uint8_t code) noexcept {
+constexpr bool is_query(std::uint8_t code) noexcept {
   switch (static_cast<Query>(code)) {
     case Query::kNone:
     case Query::kCounter:

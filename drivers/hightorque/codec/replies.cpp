@@ -211,7 +211,7 @@ transport::CanMessage encode_model_name(int motor, std::string_view name) noexce
   transport::CanMessage message = wire::fd_frame(reply_id(Width::kInt16, motor), kModelHeaderBytes + length);
   message.data[0] = kModelReply;
   message.data[1] = static_cast<std::uint8_t>(length);
-  std::copy_n(name.data(), length, message.data.data() + kModelHeaderBytes);
+  std::copy_n(name.begin(), length, message.data.data() + kModelHeaderBytes);
   return message;
 }
 

@@ -52,7 +52,7 @@ Int truncate(double value, Int limit = std::numeric_limits<Int>::max(),
   return static_cast<Int>(value);
 }
 
-inline constexpr std::size_t width_bytes(Width width) noexcept { return width == Width::kInt16 ? 2 : 4; }
+constexpr std::size_t width_bytes(Width width) noexcept { return width == Width::kInt16 ? 2 : 4; }
 
 /// Writes `value` (in wire counts: motor units × the width's scale) at `width`.
 inline void put_counts(Bytes bytes, std::size_t at, Width width, double value) noexcept {
@@ -87,7 +87,7 @@ inline double get_counts(ConstBytes bytes, std::size_t at, Width width) noexcept
 }
 
 /// The smallest valid CAN-FD length ≥ `length` (0–8, 12, 16, 20, 24, 32, 48, 64); 64 beyond.
-inline constexpr std::size_t fd_length(std::size_t length) noexcept {
+constexpr std::size_t fd_length(std::size_t length) noexcept {
   constexpr std::array<std::size_t, 7> kSteps{12, 16, 20, 24, 32, 48, 64};
   if (length <= 8) return length;
   for (const std::size_t step : kSteps) {

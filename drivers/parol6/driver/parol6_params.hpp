@@ -17,7 +17,7 @@ namespace robotd::parol6 {
 struct Parol6Params {
   std::string model = "PAROL6";
   transport::SerialConfig serial;
-  double exchange_rate_hz = 100;   // frames per second to the board (it answers each)
+  double exchange_rate_hz = 100;  // frames per second to the board (it answers each)
   // No reply this long while sending: the link is lost. Below robotd's feedback_timeout_ms
   // (100 ms), so that a silent board is a lost link the driver names and reconnects, not the loop's
   // generic "no feedback" fault racing it on the same tick.

@@ -34,8 +34,8 @@ struct PiperJointParams {
 struct PiperParams {
   std::string model = "AgileX PiPER";
   transport::CanLinkConfig can;
-  bool check_interface = true;    // the SDK's judge_flag: interface up at 1 Mbit/s (SocketCAN only)
-  int connect_timeout_ms = 500;   // arm feedback must arrive this soon after opening the link
+  bool check_interface = true;   // the SDK's judge_flag: interface up at 1 Mbit/s (SocketCAN only)
+  int connect_timeout_ms = 500;  // arm feedback must arrive this soon after opening the link
   // No 0x2A1 or 0x2A5–0x2A7 this long: the link is lost. Below robotd's feedback_timeout_ms
   // (100 ms), so that the driver names and reconnects a silent arm before the loop's generic
   // "no feedback" fault fires on the same tick.

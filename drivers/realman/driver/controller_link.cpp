@@ -234,6 +234,11 @@ void ControllerLink::read_tcp(Clock::time_point now) {
     if (n < 0) {
       if (errno == EINTR) continue;
       if (errno == EAGAIN || errno == EWOULDBLOCK) break;
+      // A controller that closes with robotd's frames still unread in its socket sends a reset.
+      if (errno == ECONNRESET) {
+        lose_link("the controller closed the TCP connection (" + settings_.controller.to_string() + ", reset)");
+        return;
+      }
       lose_link("TCP connection to " + settings_.controller.to_string() + " failed (" + errno_text(errno) + ")");
       return;
     }

@@ -186,6 +186,7 @@ TEST_P(HighTorqueDriverTest, DescribeTellsTheJointMapAndTheOps) {
   EXPECT_DOUBLE_EQ(description.joints[4].default_kp, 40);
   EXPECT_FALSE(description.has_imu);
   std::vector<std::string> ops;
+  ops.reserve(description.ops.size());
   for (const auto& op : description.ops) ops.push_back(op.name);
   EXPECT_EQ(ops, (std::vector<std::string>{"state", "motor_info", "set_motor_timeout", "reboot_motor"}));
 }

@@ -1,5 +1,4 @@
 // Loads the built plugin module the way robotd does: dlopen, then the one entry symbol.
-#include <cstring>
 #include <dlfcn.h>
 
 #include <gtest/gtest.h>
@@ -17,8 +16,8 @@ class SimPluginTest : public ::testing::Test {
     ASSERT_NE(handle_, nullptr) << dlerror();
     void* symbol = dlsym(handle_, kPluginEntrySymbol);
     ASSERT_NE(symbol, nullptr) << dlerror();
-    PluginEntry entry = nullptr;
-    std::memcpy(&entry, &symbol, sizeof(entry));  // object pointer to function pointer, as dlsym requires
+    // dlsym returns functions as object pointers; POSIX guarantees the conversion.
+    const auto entry = reinterpret_cast<PluginEntry>(symbol);  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
     info_ = entry();
     ASSERT_NE(info_, nullptr);
   }
