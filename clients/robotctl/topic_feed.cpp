@@ -121,18 +121,16 @@ std::optional<int> run_feed(VerbContext& context, const FeedOptions& options, st
   }
   SampleQueue queue;
   const robotd::Subscription subscription = subscribe(context.client, options, queue, context.stop);
-  const auto deadline =
-      options.duration ? std::optional(std::chrono::steady_clock::now() + *options.duration) : std::nullopt;
   int written = 0;
   while (options.count == 0 || written < options.count) {
-    const StopSignals::Wake wake = deadline ? context.stop.wait_until(*deadline) : context.stop.wait_for_wake();
+    const StopSignals::Wake wake = context.stop.wait_for_wake();
     for (const auto& text : queue.take_all()) {
       if (options.count > 0 && written == options.count) break;
       out << text;
       ++written;
     }
     out.flush();
-    if (wake == StopSignals::Wake::kStopSignal || wake == StopSignals::Wake::kDeadline) break;
+    if (wake == StopSignals::Wake::kStopSignal) break;
   }
   return written;
 }

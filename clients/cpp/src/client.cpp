@@ -14,6 +14,8 @@ namespace robotd {
 namespace {
 
 constexpr int kStateHistoryDepth = 10;
+// As deep as robotd's own command reader: several sessions streaming at 1 kHz arrive in bursts.
+constexpr int kCommandHistoryDepth = 64;
 
 Error refused(const std::string& service, const std::string& message) {
   return make_error(ErrorCode::kRefused, "robotd refused " + service + ": " + message);
@@ -176,6 +178,11 @@ Subscription Client::on_joy(std::function<void(const Joy&)> callback, const std:
 Subscription Client::on_policy_data(std::function<void(const PolicyData&)> callback) {
   const auto qos = wire::reliable_qos(kStateHistoryDepth);
   return core_->subscribe<PolicyData>(wire::kPolicyDataTopic, qos.get(), std::move(callback));
+}
+
+Subscription Client::on_control_commands(std::function<void(const ControlCommand&)> callback) {
+  const auto qos = wire::reliable_qos(kCommandHistoryDepth);
+  return core_->subscribe<ControlCommand>(wire::kControlCommandTopic, qos.get(), std::move(callback));
 }
 
 Result<JointState> Client::next_joint_state(const std::string& device, std::chrono::milliseconds timeout) {

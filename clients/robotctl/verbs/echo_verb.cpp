@@ -21,7 +21,9 @@ Verb add_echo_verb(CLI::App& app) {
       "Example:\n  robotctl echo /joint_states --device arm --count 1\n"
       "  robotctl echo device_status --json | jq .loop.wake_latency_p99_us\n"
       "  robotctl echo joy          (robotd's joystick, config key \"joystick\")\n"
-      "  robotctl echo policy_data  (what policies publish; robotd need not run)");
+      "  robotctl echo policy_data  (what policies publish; robotd need not run)\n"
+      "  robotctl echo policy_data --json > run.jsonl   (keep a topic as JSON lines; robotctl record keeps "
+      "joint states, commands and status for replay)");
   return Verb{command, true, [options](VerbContext& context) {
                 int failure = kExitFailure;
                 return run_feed(context, *options, std::cout, failure) ? kExitSuccess : failure;

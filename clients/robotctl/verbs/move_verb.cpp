@@ -1,6 +1,5 @@
 // move: take the motors, stream a smooth trajectory to a target, wait until the joints arrive,
 // release them.
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -10,14 +9,13 @@
 #include "device_lookup.hpp"
 #include "exit_status.hpp"
 #include "joint_position_watch.hpp"
+#include "session_motion.hpp"
 #include "text_format.hpp"
 #include "trajectory.hpp"
 #include "verbs/verbs.hpp"
 
 namespace robotctl {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct MoveOptions {
   std::string device;
@@ -30,18 +28,6 @@ struct MoveOptions {
   robotd::Behavior on_timeout = robotd::Behavior::kDamping;
   robotd::Behavior release_mode = robotd::Behavior::kKeep;
 };
-
-// Long enough that a late tick never ends the session, short enough that a dead robotctl is
-// caught quickly.
-std::chrono::milliseconds session_timeout(Clock::duration tick_period) {
-  return std::max(std::chrono::milliseconds(500), std::chrono::ceil<std::chrono::milliseconds>(5 * tick_period));
-}
-
-std::vector<std::int32_t> every_motor(const robotd::DeviceInfo& device) {
-  std::vector<std::int32_t> ids(device.joint_names.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::int32_t>(i);
-  return ids;
-}
 
 // What is wrong with moving `motor_ids` of `device` to `target_rad`, or "" when nothing is.
 std::string target_problem(const robotd::DeviceInfo& device, const std::vector<std::int32_t>& motor_ids,
@@ -65,24 +51,6 @@ std::string target_problem(const robotd::DeviceInfo& device, const std::vector<s
     }
   }
   return "";
-}
-
-std::vector<double> positions_of(const std::vector<double>& all_rad, const std::vector<std::int32_t>& motor_ids) {
-  std::vector<double> positions(motor_ids.size());
-  for (std::size_t i = 0; i < motor_ids.size(); ++i) positions[i] = all_rad.at(static_cast<std::size_t>(motor_ids[i]));
-  return positions;
-}
-
-std::vector<float> as_floats(const std::vector<double>& values) {
-  std::vector<float> floats(values.size());
-  std::transform(values.begin(), values.end(), floats.begin(), [](double v) { return static_cast<float>(v); });
-  return floats;
-}
-
-std::vector<double> errors_rad(const std::vector<double>& actual, const std::vector<double>& target) {
-  std::vector<double> errors(target.size());
-  for (std::size_t i = 0; i < target.size(); ++i) errors[i] = std::fabs(actual[i] - target[i]);
-  return errors;
 }
 
 std::string not_arrived_text(const robotd::DeviceInfo& device, const std::vector<std::int32_t>& motor_ids,
@@ -113,64 +81,38 @@ int move(VerbContext& context, const MoveOptions& options) {
   const auto tick_period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / options.rate_hz));
   JointPositionWatch watch(context.client, options.device);
-  robotd::SessionRequest request;
-  request.device = options.device;
-  request.motor_ids = motor_ids;
-  request.mode = robotd::ControlMode::kPosition;
-  request.on_timeout = options.on_timeout;
-  request.timeout = session_timeout(tick_period);
-  request.on_release = options.release_mode;
-  auto granted = context.client.request_control(request);
-  if (!granted) return report_failure(granted.error(), client_options);
-  robotd::Session& session = granted.value();
-  const auto start = context.client.next_joint_state(options.device, client_options.service_timeout);
-  if (!start) return report_failure(start.error(), client_options);
-  if (start.value().position.size() != device.value().joint_names.size()) {
-    return report_failure("robotd's /joint_states for '" + options.device + "' has " +
-                          std::to_string(start.value().position.size()) + " positions for " +
-                          std::to_string(device.value().joint_names.size()) + " joints");
-  }
+  auto taken = take_position_session(context.client,
+                                     {options.device, motor_ids, tick_period, options.on_timeout, options.release_mode},
+                                     device.value().joint_names.size());
+  if (!taken) return report_failure(taken.error(), client_options);
+  robotd::Session& session = taken.value().session;
+  const robotd::JointState& start = taken.value().start;
 
-  const MinimumJerkMove plan(positions_of(start.value().position, motor_ids), options.target_rad, options.speed_rad_s);
+  const MinimumJerkMove plan(positions_of(start.position, motor_ids), options.target_rad, options.speed_rad_s);
   std::cerr << "moving " << motor_ids.size() << " joint(s) of '" << options.device << "' over "
             << fixed(plan.duration_s(), 2) << " s at up to " << fixed(options.speed_rad_s, 2) << " rad/s" << std::endl;
 
   // Stream the trajectory at the command rate, then keep sending its target until the joints arrive.
-  const auto start_time = Clock::now();
-  const auto trajectory_end =
-      start_time + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(plan.duration_s()));
-  const auto settle_deadline = trajectory_end + std::chrono::milliseconds(options.settle_ms);
-  auto next_tick = start_time;
-  while (true) {
-    const auto now = Clock::now();
-    const double elapsed_s = std::chrono::duration<double>(now - start_time).count();
-    if (auto sent = session.send_positions(as_floats(plan.positions_at(elapsed_s))); !sent) {
-      return report_failure(sent.error(), client_options);
-    }
-    if (now >= trajectory_end) {
-      const auto actual = positions_of(watch.latest().value_or(start.value().position), motor_ids);
-      const auto errors = errors_rad(actual, options.target_rad);
-      const double max_error = errors.empty() ? 0.0 : *std::max_element(errors.begin(), errors.end());
-      if (max_error <= options.tolerance_rad) {
-        std::cout << "arrived in " << fixed(elapsed_s, 2) << " s, max error " << fixed(max_error, 4) << " rad"
-                  << std::endl;
-        break;
-      }
-      if (now >= settle_deadline) {
-        report_failure(not_arrived_text(device.value(), motor_ids, actual, options.target_rad, options));
-        (void)session.release(options.release_mode);
-        return kExitFailure;
-      }
-    }
-    next_tick += tick_period;
-    StopSignals::Wake wake = StopSignals::Wake::kWoken;
-    while (wake == StopSignals::Wake::kWoken) wake = context.stop.wait_until(next_tick);
-    if (wake == StopSignals::Wake::kStopSignal) {
+  const MotionSettings settings{tick_period, options.tolerance_rad, std::chrono::milliseconds(options.settle_ms)};
+  const MotionResult motion =
+      stream_move(session, context.stop, watch, start.position, plan, options.target_rad, settings);
+  switch (motion.end) {
+    case MotionResult::End::kArrived:
+      std::cout << "arrived in " << fixed(motion.elapsed_s, 2) << " s, max error "
+                << fixed(max_error_rad(motion.actual_rad, options.target_rad), 4) << " rad" << std::endl;
+      break;
+    case MotionResult::End::kNotArrived:
+      report_failure(not_arrived_text(device.value(), motor_ids, motion.actual_rad, options.target_rad, options));
+      (void)session.release(options.release_mode);
+      return kExitFailure;
+    case MotionResult::End::kStopSignal: {
       auto released = session.release(options.release_mode);
       std::cerr << "robotctl: interrupted; " << (released ? released.value().message : released.error().message)
                 << std::endl;
       return exit_status_for_signal(context.stop.received_signal());
     }
+    case MotionResult::End::kFailed:
+      return report_failure(motion.error, client_options);
   }
   auto released = session.release(options.release_mode);
   if (!released) return report_failure(released.error(), client_options);

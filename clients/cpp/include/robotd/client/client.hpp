@@ -62,6 +62,9 @@ class Client {
   Subscription on_joy(std::function<void(const Joy&)> callback, const std::string& topic = "joy");
   /// What policies publish on /policy_data.
   Subscription on_policy_data(std::function<void(const PolicyData&)> callback);
+  /// Every client's commands on /control_command, as robotd receives them (for recording; robotd
+  /// alone decides what they do).
+  Subscription on_control_commands(std::function<void(const ControlCommand&)> callback);
 
   /// The next JointState / DeviceStatus of `device` ("" = any), or a timeout error.
   Result<JointState> next_joint_state(const std::string& device, std::chrono::milliseconds timeout);
