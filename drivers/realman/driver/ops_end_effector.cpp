@@ -104,7 +104,8 @@ Result<nlohmann::json> RealmanOps::hand(const std::string& op, const nlohmann::j
   const auto device = block ? std::optional(Device::kHand) : std::nullopt;
   if (op == "set_hand_angle") {
     reader.require("angles", "6 angles, each 0..1000 or -1 to keep");
-    const auto angles = reader.number_array("angles");
+    // Bounded so that the conversion to int below is defined; check_hand_angles says 0..1000.
+    const auto angles = reader.number_array("angles", {.min = -kAny, .max = kAny});
     if (angles && angles->size() != 6) {
       reader.error("angles", "expected 6 angles (little, ring, middle, index, thumb bend, thumb rotation), got " +
                                  std::to_string(angles->size()));

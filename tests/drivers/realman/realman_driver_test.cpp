@@ -305,6 +305,9 @@ TEST_F(RealmanDriverTest, OpsCheckTheirArgumentsBeforeSendingAnything) {
   const auto bad_hand = driver_.call("set_hand_angle", {{"angles", {-2, 0, 0, 0, 0, 0}}});
   ASSERT_FALSE(bad_hand);
   EXPECT_NE(bad_hand.error().message.find("-1"), std::string::npos) << bad_hand.error().message;
+  const auto huge_angle = driver_.call("set_hand_angle", {{"angles", {0, 0, 3e28, 0, 0, 0}}});  // beyond an int
+  ASSERT_FALSE(huge_angle);
+  EXPECT_NE(huge_angle.error().message.find("angles"), std::string::npos) << huge_angle.error().message;
   const auto connected_block =
       driver_.call("movej", {{"joints_rad", {0, 0, 0, 0, 0, 0}}, {"trajectory_connect", true}});
   ASSERT_FALSE(connected_block);
