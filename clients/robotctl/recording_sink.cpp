@@ -56,15 +56,11 @@ void RecordingSink::add(const robotd::ControlCommand& command) {
   }
   const auto device = device_index(device_name);
   if (!device && !keep_unknown_devices_) return;
-  const recording::ControlCommandRecord record{device.value_or(recording::kUnknownDevice),
-                                               command.header.stamp.to_ns(),
-                                               recording::session_tag(command.uuid),
-                                               command.motor_ids,
-                                               command.positions,
-                                               command.velocities,
-                                               command.kp,
-                                               command.kd,
-                                               command.torques};
+  const recording::ControlCommandRecord record{
+      device.value_or(recording::kUnknownDevice),
+      command.header.stamp.to_ns(),
+      recording::session_tag(command.uuid),
+      {command.motor_ids, command.positions, command.velocities, command.kp, command.kd, command.torques}};
   append(RecordKind::kControlCommand, recording::encode(record));
 }
 

@@ -57,8 +57,8 @@ TEST(RecordingFormatTest, JointStateRoundTripsThroughItsPayload) {
 TEST(RecordingFormatTest, ControlCommandRoundTripsThroughItsPayload) {
   ControlCommandRecord command = testing::position_command({0, 1}, {0.5F, -0.25F});
   command.stamp_ns = 17;
-  command.velocities = {1.0F, 2.0F};
-  command.kp = {100.0F, 100.0F};
+  command.values.velocities = {1.0F, 2.0F};
+  command.values.kp = {100.0F, 100.0F};
   const auto payload = encode(command);
   ASSERT_TRUE(payload);
   EXPECT_EQ(decode_control_command(*payload), command);

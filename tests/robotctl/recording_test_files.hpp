@@ -46,8 +46,8 @@ inline ControlCommandRecord position_command(std::vector<std::int32_t> motor_ids
   ControlCommandRecord command;
   command.device = 0;
   command.session = 0x3f2a9c1e;
-  command.motor_ids = std::move(motor_ids);
-  command.positions = std::move(positions);
+  command.values.motor_ids = std::move(motor_ids);
+  command.values.positions = std::move(positions);
   return command;
 }
 

@@ -101,7 +101,7 @@ TEST_F(ReplayPlanTest, MotorTheRecordingNeverCommandsIsRefused) {
 TEST_F(ReplayPlanTest, TorqueCommandsAreRefusedSayingReplayIsPositionOnly) {
   command(1 * kMs, position_command({0}, {0.1F}));
   ControlCommandRecord mixed = position_command({0}, {0.1F});
-  mixed.torques = {0.5F};
+  mixed.values.torques = {0.5F};
   command(250 * kMs, mixed);
   const auto replay = plan();
   ASSERT_FALSE(replay);

@@ -7,12 +7,10 @@ on a DDS domain of its own. The recordings are read with robotd.recording (clien
 
 CTest runs each TestCase as robotctl.recording.<TestCase> (tests/robotctl/CMakeLists.txt).
 """
-import argparse
 import bisect
 import json
 import os
 import re
-import select
 import shutil
 import signal
 import subprocess
@@ -25,6 +23,7 @@ from pathlib import Path
 from robotd import recording
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from cli_test import read_line, run_tests, stop_process  # noqa: E402  (tests/support)
 from robotd_daemon import RobotdDaemon  # noqa: E402  (tests/support)
 
 ROBOTD = ""
@@ -54,21 +53,6 @@ def arm(position_limit_rad=2.6, velocity_max_rad_s=2.0):
             },
         },
     }
-
-
-def read_line(stream, timeout_s=10.0):
-    """The next line of `stream`, or "" if none arrives within the timeout."""
-    ready, _, _ = select.select([stream], [], [], timeout_s)
-    return stream.readline() if ready else ""
-
-
-def stop_process(process):
-    if process.poll() is None:
-        process.kill()
-    process.wait()
-    for stream in (process.stdout, process.stderr):
-        if stream:
-            stream.close()
 
 
 class Robotctl:
@@ -498,14 +482,13 @@ def replay_seconds(result):
     return float(re.search(r"replayed \d+ commands in ([\d.]+) s", result.stdout).group(1))
 
 
-def main():
+def take_binaries(robotd, robotctl):
     global ROBOTD, ROBOTCTL
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--robotd", required=True, help="path of the robotd binary")
-    parser.add_argument("--robotctl", required=True, help="path of the robotctl binary")
-    args, unittest_args = parser.parse_known_args()
-    ROBOTD, ROBOTCTL = args.robotd, args.robotctl
-    unittest.main(argv=[sys.argv[0], *unittest_args], verbosity=2)
+    ROBOTD, ROBOTCTL = robotd, robotctl
+
+
+def main():
+    run_tests(__doc__, take_binaries)
 
 
 if __name__ == "__main__":

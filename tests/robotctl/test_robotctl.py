@@ -7,11 +7,9 @@ The DDS domain id is claimed with an exclusive lock on /tmp/robotd-test-domain-<
 held for the whole run, so tests running in parallel never share a domain.
 """
 
-import argparse
 import json
 import os
 import re
-import select
 import signal
 import subprocess
 import sys
@@ -21,6 +19,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+from cli_test import read_line, run_tests, stop_process  # noqa: E402  (tests/support)
 from test_domain import claim_domain_id  # noqa: E402  (tests/support)
 
 ROBOTD = ""
@@ -103,12 +102,6 @@ def robotctl(*args, domain_id, timeout_s=20):
 def start_robotctl(*args, domain_id):
     return subprocess.Popen([ROBOTCTL, "--domain", str(domain_id), *args], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
-
-
-def read_line(stream, timeout_s=10.0):
-    """The next line of `stream`, or "" if none arrives within the timeout."""
-    ready, _, _ = select.select([stream], [], [], timeout_s)
-    return stream.readline() if ready else ""
 
 
 class RobotctlTest(unittest.TestCase):
@@ -309,23 +302,13 @@ class RobotctlTest(unittest.TestCase):
                 self.assertNotEqual(result.stderr.strip(), "")
 
 
-def stop_process(process):
-    if process.poll() is None:
-        process.kill()
-    process.wait()
-    for stream in (process.stdout, process.stderr):
-        if stream:
-            stream.close()
+def take_binaries(robotd, robotctl):
+    global ROBOTD, ROBOTCTL
+    ROBOTD, ROBOTCTL = robotd, robotctl
 
 
 def main():
-    global ROBOTD, ROBOTCTL
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--robotd", required=True, help="path of the robotd binary")
-    parser.add_argument("--robotctl", required=True, help="path of the robotctl binary")
-    args, unittest_args = parser.parse_known_args()
-    ROBOTD, ROBOTCTL = args.robotd, args.robotctl
-    unittest.main(argv=[sys.argv[0], *unittest_args], verbosity=2)
+    run_tests(__doc__, take_binaries)
 
 
 if __name__ == "__main__":

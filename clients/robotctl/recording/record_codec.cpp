@@ -30,8 +30,9 @@ std::optional<std::string> encode(const ControlCommandRecord& record) {
   out.u16(record.device);
   out.i64(record.stamp_ns);
   out.u32(record.session);
-  if (!out.i32_array(record.motor_ids) || !out.f32_array(record.positions) || !out.f32_array(record.velocities) ||
-      !out.f32_array(record.kp) || !out.f32_array(record.kd) || !out.f32_array(record.torques)) {
+  const robotd::Command& values = record.values;
+  if (!out.i32_array(values.motor_ids) || !out.f32_array(values.positions) || !out.f32_array(values.velocities) ||
+      !out.f32_array(values.kp) || !out.f32_array(values.kd) || !out.f32_array(values.torques)) {
     return std::nullopt;
   }
   return payload;
@@ -55,12 +56,12 @@ std::optional<ControlCommandRecord> decode_control_command(std::string_view payl
   record.device = in.u16();
   record.stamp_ns = in.i64();
   record.session = in.u32();
-  record.motor_ids = in.i32_array();
-  record.positions = in.f32_array();
-  record.velocities = in.f32_array();
-  record.kp = in.f32_array();
-  record.kd = in.f32_array();
-  record.torques = in.f32_array();
+  record.values.motor_ids = in.i32_array();
+  record.values.positions = in.f32_array();
+  record.values.velocities = in.f32_array();
+  record.values.kp = in.f32_array();
+  record.values.kd = in.f32_array();
+  record.values.torques = in.f32_array();
   if (!in.consumed_exactly()) return std::nullopt;
   return record;
 }

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "robotd/client/session.hpp"
+
 namespace robotctl::recording {
 
 /// The device index of a command whose device robotctl could not tell (no device field, and
@@ -31,12 +33,7 @@ struct ControlCommandRecord {
   std::uint16_t device = kUnknownDevice;
   std::int64_t stamp_ns = 0;  // the command's header stamp: the sender's CLOCK_REALTIME
   std::uint32_t session = 0;  // the first 8 hex digits of the session uuid (session_tag)
-  std::vector<std::int32_t> motor_ids;
-  std::vector<float> positions;   // rad
-  std::vector<float> velocities;  // rad/s
-  std::vector<float> kp;
-  std::vector<float> kd;
-  std::vector<float> torques;  // N·m
+  robotd::Command values;     // as sent: arrays the command left out are empty
 
   bool operator==(const ControlCommandRecord&) const = default;
 };

@@ -18,7 +18,7 @@ robotd::Error refused(const std::string& message) {
 
 std::string seconds_text(std::int64_t time_ns) { return "t=" + fixed(static_cast<double>(time_ns) * 1e-9, 3) + " s"; }
 
-bool has_values(const ControlCommandRecord& command) {
+bool has_values(const robotd::Command& command) {
   return !command.positions.empty() || !command.velocities.empty() || !command.kp.empty() || !command.kd.empty() ||
          !command.torques.empty();
 }
@@ -32,7 +32,7 @@ robotd::Error malformed_command(const std::string& path, std::int64_t time_ns) {
 }
 
 robotd::Error not_one_position_per_motor(const std::string& path, std::int64_t time_ns, const std::string& device,
-                                         const ControlCommandRecord& command) {
+                                         const robotd::Command& command) {
   return refused(command_at(path, time_ns) + " for '" + device + "' has " + std::to_string(command.positions.size()) +
                  " positions for " + std::to_string(command.motor_ids.size()) +
                  " motor ids; replay needs one position per motor id, as robotd accepts them");
@@ -198,24 +198,25 @@ robotd::Result<ReplayPlan> read_replay_plan(RecordingReader& reader, const std::
     auto command = decode_control_command(record->payload);
     if (!command) return malformed_command(path, record->time_ns);
     if (command->device != device_index) continue;
-    if (command->motor_ids.empty() && !has_values(*command)) {
+    const robotd::Command& values = command->values;
+    if (values.motor_ids.empty() && !has_values(values)) {
       ++plan.keepalives;
       continue;
     }
-    if (!command->torques.empty()) {
+    if (!values.torques.empty()) {
       if (torque_commands++ == 0) first_torque_ns = record->time_ns;
       continue;
     }
-    if (command->motor_ids.empty() || command->positions.size() != command->motor_ids.size()) {
-      return not_one_position_per_motor(path, record->time_ns, device, *command);
+    if (values.motor_ids.empty() || values.positions.size() != values.motor_ids.size()) {
+      return not_one_position_per_motor(path, record->time_ns, device, values);
     }
     ReplayStep step{record->time_ns, command->stamp_ns, {}, {}, 0};
-    for (std::size_t i = 0; i < command->motor_ids.size(); ++i) {
-      const std::int32_t id = command->motor_ids[i];
+    for (std::size_t i = 0; i < values.motor_ids.size(); ++i) {
+      const std::int32_t id = values.motor_ids[i];
       if (!wanted.empty() && wanted.count(id) == 0) continue;
       step.motor_ids.push_back(id);
-      step.positions.push_back(command->positions[i]);
-      first_rad.try_emplace(id, command->positions[i]);
+      step.positions.push_back(values.positions[i]);
+      first_rad.try_emplace(id, values.positions[i]);
     }
     if (!step.motor_ids.empty()) plan.steps.push_back(std::move(step));
   }

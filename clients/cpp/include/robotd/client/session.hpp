@@ -38,6 +38,8 @@ struct Command {
   std::vector<float> kp;
   std::vector<float> kd;
   std::vector<float> torques;  // N·m
+
+  bool operator==(const Command&) const = default;
 };
 
 class Session {
