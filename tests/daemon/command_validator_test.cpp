@@ -245,6 +245,24 @@ TEST_F(CommandValidatorTest, ValuesBeyondLimitsAreClampedToTheBoundUnderTheClamp
   EXPECT_FLOAT_EQ(out_.joints[1].torque, -4.0F);
 }
 
+TEST_F(CommandValidatorTest, AClampedValueNeverLandsBeyondALimitThatIsNotAFloat) {
+  // 0.7 and 241.1 are not floats; the nearest floats lie beyond 0.7 and 241.1. A clamped value
+  // must stay within the limit, so it is the float just inside.
+  test::JointSpec spec = joint_spec();
+  spec.position_max_rad = 0.7;
+  spec.kp_max = 241.10255146181541;
+  model_ = test::make_device_model("arm", 3, true, BehaviorSupport{}, spec);
+  model_.limit_policy = LimitPolicy::kClamp;
+  ControlCommand c = mixed_command();
+  c.positions[0] = 2.0F;
+  c.kp[0] = 300.0F;
+  expect_accepted(c);
+  EXPECT_LE(static_cast<double>(out_.joints[0].position), 0.7);
+  EXPECT_GT(static_cast<double>(out_.joints[0].position), 0.7 - 1e-6);
+  EXPECT_LE(static_cast<double>(out_.joints[0].kp), 241.10255146181541);
+  EXPECT_GT(static_cast<double>(out_.joints[0].kp), 241.1025);
+}
+
 TEST_F(CommandValidatorTest, ValuesWithinLimitsAreNotReportedAsClamped) {
   model_.limit_policy = LimitPolicy::kClamp;
   ControlCommand c = mixed_command();

@@ -11,7 +11,7 @@
 namespace robotd::device {
 namespace {
 
-TickTiming timing(std::int32_t period_ns, std::int32_t wake_latency_ns, std::int32_t execution_ns) {
+TickTiming timing(std::int64_t period_ns, std::int64_t wake_latency_ns, std::int64_t execution_ns) {
   TickTiming t;
   t.period_ns = period_ns;
   t.wake_latency_ns = wake_latency_ns;
@@ -20,7 +20,7 @@ TickTiming timing(std::int32_t period_ns, std::int32_t wake_latency_ns, std::int
 }
 
 TEST(Percentiles, NearestRankOnOneToHundredMicroseconds) {
-  std::vector<std::int32_t> values(100);
+  std::vector<std::int64_t> values(100);
   std::iota(values.begin(), values.end(), 1);
   for (auto& v : values) v *= 1000;  // 1..100 µs, in ns
   std::shuffle(values.begin(), values.end(), std::mt19937(7));
@@ -31,7 +31,7 @@ TEST(Percentiles, NearestRankOnOneToHundredMicroseconds) {
 }
 
 TEST(Percentiles, NearestRankRoundsTheRankUp) {
-  std::vector<std::int32_t> values{4000, 1000, 3000, 2000, 5000};  // p50: rank ⌈2.5⌉ = 3
+  std::vector<std::int64_t> values{4000, 1000, 3000, 2000, 5000};  // p50: rank ⌈2.5⌉ = 3
   const Percentiles p = percentiles(values);
   EXPECT_FLOAT_EQ(p.p50, 3.0F);
   EXPECT_FLOAT_EQ(p.p99, 5.0F);
@@ -39,7 +39,7 @@ TEST(Percentiles, NearestRankRoundsTheRankUp) {
 }
 
 TEST(Percentiles, SingleValueIsEveryPercentile) {
-  std::vector<std::int32_t> values{1500};
+  std::vector<std::int64_t> values{1500};
   const Percentiles p = percentiles(values);
   EXPECT_FLOAT_EQ(p.p50, 1.5F);
   EXPECT_FLOAT_EQ(p.p99, 1.5F);
@@ -47,7 +47,7 @@ TEST(Percentiles, SingleValueIsEveryPercentile) {
 }
 
 TEST(Percentiles, NoValuesGiveZeros) {
-  std::vector<std::int32_t> values;
+  std::vector<std::int64_t> values;
   const Percentiles p = percentiles(values);
   EXPECT_EQ(p.p50, 0.0F);
   EXPECT_EQ(p.p99, 0.0F);
@@ -95,6 +95,16 @@ TEST(LoopStatisticsWindow, SummaryReportsEachInputInItsOwnFields) {
   EXPECT_FLOAT_EQ(stats.execution_p50_us, 25.0F);
   EXPECT_FLOAT_EQ(stats.execution_p99_us, 49.5F);
   EXPECT_FLOAT_EQ(stats.execution_max_us, 50.0F);
+}
+
+TEST(LoopStatisticsWindow, AStallOfSecondsIsReportedAsItWasNotWrappedAround) {
+  // 2.1 s is beyond a 32-bit count of nanoseconds; a stall that long must still read as one.
+  LoopStatisticsWindow window(10);
+  window.add(timing(1'000'000, 1'000, 500));
+  window.add(timing(5'001'000'000, 5'000'000'000, 500));
+  const LoopStatistics stats = window.summarize();
+  EXPECT_FLOAT_EQ(stats.wake_latency_max_us, 5'000'000.0F);
+  EXPECT_FLOAT_EQ(stats.period_max_us, 5'001'000.0F);
 }
 
 }  // namespace

@@ -22,11 +22,20 @@ std::string join_ids(const std::vector<std::int32_t>& ids) {
   return out;
 }
 
+// The float nearest to `limit` that is not beyond it (a double limit rarely is a float, and
+// rounding to the nearest float can land just outside it).
+float float_within(double limit, bool upper) {
+  const auto nearest = static_cast<float>(limit);
+  if (upper && static_cast<double>(nearest) > limit) return std::nextafter(nearest, -HUGE_VALF);
+  if (!upper && static_cast<double>(nearest) < limit) return std::nextafter(nearest, HUGE_VALF);
+  return nearest;
+}
+
 // Checks one value against [low, high]: accepted, clamped (policy clamp) or rejected.
 bool within_or_clamped(float& value, double low, double high, LimitPolicy policy, bool& clamped) {
   if (value >= low && value <= high) return true;
   if (policy == LimitPolicy::kReject) return false;
-  value = static_cast<float>(clamp(value, low, high));
+  value = value < low ? float_within(low, false) : float_within(high, true);
   clamped = true;
   return true;
 }

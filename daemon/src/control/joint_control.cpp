@@ -4,26 +4,31 @@
 
 namespace robotd::control {
 
-void begin_tracking(JointControl& joint, const driver::JointFeedback& measured, double velocity_max) noexcept {
+void begin_tracking(JointControl& joint, const driver::JointFeedback& measured, const MotionLimits& limits,
+                    double dt_s) noexcept {
   if (joint.mode == JointMode::kTrack) return;
   joint.mode = JointMode::kTrack;
-  joint.setpoint = LimiterState{measured.position_rad, clamp(measured.velocity_rad_s, -velocity_max, velocity_max)};
+  if (joint.setpoint_written) return;
+  joint.setpoint = LimiterState{measured.position_rad,
+                                velocity_within_limits(measured.velocity_rad_s, measured.position_rad, limits, dt_s)};
 }
 
-void hold_position(JointControl& joint, const driver::JointFeedback& measured, Gains fallback_gains) noexcept {
-  if (joint.mode == JointMode::kTrack) {
-    joint.target_position = joint.setpoint.position;
+void hold_position(JointControl& joint, const driver::JointFeedback& measured, Gains gains, const MotionLimits& limits,
+                   double dt_s) noexcept {
+  if (joint.mode == JointMode::kTrack || joint.setpoint_written) {
+    joint.mode = JointMode::kTrack;
+    joint.target_position = braking_point(joint.setpoint, limits, dt_s);
   } else {
     joint.mode = JointMode::kTrack;
+    joint.track_kind = driver::JointCommandKind::kPosition;
     joint.setpoint = LimiterState{measured.position_rad, 0};
     joint.target_position = measured.position_rad;
-    joint.kp = fallback_gains.kp;
-    joint.kd = fallback_gains.kd;
-    joint.torque_nm = 0;
-    joint.track_kind = driver::JointCommandKind::kPosition;
   }
   joint.target_velocity = 0;
   joint.extrapolate_ns = 0;
+  joint.kp = gains.kp;
+  joint.kd = gains.kd;
+  joint.torque_nm = 0;
 }
 
 void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains) noexcept {
@@ -38,11 +43,11 @@ void hold_measured(JointControl& joint, const driver::JointFeedback& measured, G
   joint.torque_nm = 0;
 }
 
-void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured,
-                    Gains gains) noexcept {
+void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured, Gains gains,
+                    const MotionLimits& limits, double dt_s) noexcept {
   switch (behavior) {
     case Behavior::kKeep:
-      hold_position(joint, measured, gains);
+      hold_position(joint, measured, gains, limits, dt_s);
       return;
     case Behavior::kDamping:
       joint.mode = JointMode::kDamping;
@@ -57,6 +62,7 @@ void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointF
 driver::JointCommand joint_output(JointControl& joint, const driver::JointFeedback& measured,
                                   const MotionLimits& limits, double dt_s, std::int64_t now_ns) noexcept {
   driver::JointCommand out;
+  joint.setpoint_written = joint.mode == JointMode::kTrack;
   switch (joint.mode) {
     case JointMode::kIdle:
       return out;

@@ -30,6 +30,7 @@ struct JointControl {
   double kd = 0;
   double torque_nm = 0;
   LimiterState setpoint;
+  bool setpoint_written = false;  // the last command written for the joint carried this setpoint
 };
 
 struct Gains {
@@ -37,20 +38,26 @@ struct Gains {
   double kd = 0;
 };
 
-/// Starts tracking from the measured state, unless the joint already tracks (then the
-/// setpoint continues, so successive targets never jump).
-void begin_tracking(JointControl& joint, const driver::JointFeedback& measured, double velocity_max) noexcept;
+/// Starts tracking from the measured state, unless the joint already tracks or its last
+/// written command carried a setpoint (then the setpoint continues, so successive targets
+/// never jump). The measured velocity seeds the setpoint only as far as it can still stop at
+/// the position limits.
+void begin_tracking(JointControl& joint, const driver::JointFeedback& measured, const MotionLimits& limits,
+                    double dt_s) noexcept;
 
-/// Stops where the joint is commanded now (or measured, if it was not tracking) and holds.
-/// Gains: the joint's current ones when tracking, else `fallback_gains`.
-void hold_position(JointControl& joint, const driver::JointFeedback& measured, Gains fallback_gains) noexcept;
+/// KEEP: brakes as hard as the limits allow and holds where the setpoint comes to rest (a
+/// joint without a live setpoint holds where it is measured). Holds with `gains` and no torque: a
+/// client's gains and feed-forward torque end with its session.
+void hold_position(JointControl& joint, const driver::JointFeedback& measured, Gains gains, const MotionLimits& limits,
+                   double dt_s) noexcept;
 
 /// Holds at the measured position, discarding any previous target (after e-stop, fault, recover).
 void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains) noexcept;
 
-/// Applies a session's timeout / release behaviour (already mapped to what the device can do).
-void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured,
-                    Gains gains) noexcept;
+/// Applies a session's timeout / release behaviour, or the safe behaviour (already mapped to
+/// what the device can do), with `gains` (the damping gain for DAMPING, the holding gains for KEEP).
+void apply_behavior(JointControl& joint, Behavior behavior, const driver::JointFeedback& measured, Gains gains,
+                    const MotionLimits& limits, double dt_s) noexcept;
 
 /// The joint's command for this tick; advances the limiter for kTrack.
 driver::JointCommand joint_output(JointControl& joint, const driver::JointFeedback& measured,

@@ -17,10 +17,10 @@ constexpr int kCommandHistoryDepth = 64;
 
 CommandIntake::CommandIntake(const wire::Participant& participant, std::vector<device::Device*> devices,
                              service::SessionService& sessions)
-    : participant_(participant), devices_(std::move(devices)), sessions_(sessions), sequence_(devices_.size(), 0) {
-  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    : participant_(participant), devices_(std::move(devices)), sessions_(sessions) {
+  for (device::Device* device : devices_) {
     counters_.push_back(std::make_unique<service::CommandCounterSet>());
-    working_.push_back(std::make_unique<device::CommandSnapshot>());
+    mailboxes_.push_back(std::make_unique<device::CommandMailbox>(device->channel()));
   }
 }
 
@@ -105,20 +105,7 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
     return;
   }
 
-  device::CommandSnapshot& snapshot = *working_[device_index];
-  const std::uint64_t sequence = ++sequence_[device_index];
-  for (std::size_t i = 0; i < validated_.count; ++i) {
-    const control::JointTargetUpdate& update = validated_.joints[i];
-    device::JointTarget& target = snapshot.joints[update.joint];
-    target.generation = session->generation;
-    target.sequence = sequence;
-    target.received_ns = now_ns;
-    target.sent_ns = command.sent_steady_ns;
-    target.update = update;
-  }
-  snapshot.slots[session->slot] = device::SlotActivity{session->generation, now_ns};
-  device.channel().commands.write_buffer() = snapshot;
-  device.channel().commands.publish();
+  mailboxes_[device_index]->post(session->slot, session->generation, validated_, now_ns, command.sent_steady_ns);
 
   counters.accepted.fetch_add(1, std::memory_order_relaxed);
   if (validated_.clamped) counters.clamped.fetch_add(1, std::memory_order_relaxed);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/throttled_log.hpp"
+#include "device/command_mailbox.hpp"
 #include "device/device.hpp"
 #include "service/command_counters.hpp"
 #include "service/session_service.hpp"
@@ -42,8 +43,7 @@ class CommandIntake {
   std::vector<device::Device*> devices_;
   service::SessionService& sessions_;
   std::vector<std::unique_ptr<service::CommandCounterSet>> counters_;
-  std::vector<std::unique_ptr<device::CommandSnapshot>> working_;  // intake's copy of each mailbox
-  std::vector<std::uint64_t> sequence_;
+  std::vector<std::unique_ptr<device::CommandMailbox>> mailboxes_;
   control::ValidatedCommand validated_;
 
   std::unique_ptr<wire::TopicReader<ControlCommand>> reader_;

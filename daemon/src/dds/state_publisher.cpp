@@ -255,9 +255,9 @@ nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
     window = window_.samples();
     if (reset) window_.clear();
   }
-  std::vector<std::int32_t> wake;
-  std::vector<std::int32_t> execution;
-  std::vector<std::int32_t> period;
+  std::vector<std::int64_t> wake;
+  std::vector<std::int64_t> execution;
+  std::vector<std::int64_t> period;
   for (const auto& timing : window) {
     wake.push_back(timing.wake_latency_ns);
     execution.push_back(timing.execution_ns);
@@ -277,7 +277,7 @@ nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
     out["wake_latency_ns"] = wake;
     out["execution_ns"] = execution;
   }
-  const auto summary = [](std::vector<std::int32_t>& values) {
+  const auto summary = [](std::vector<std::int64_t>& values) {
     const device::Percentiles p = device::percentiles(values);
     const auto us = [](float value) { return std::round(static_cast<double>(value) * 1000.0) / 1000.0; };
     return nlohmann::json{{"p50", us(p.p50)}, {"p99", us(p.p99)}, {"p999", us(p.p999)}, {"max", us(p.max)}};

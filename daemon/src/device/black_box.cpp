@@ -61,8 +61,8 @@ nlohmann::json BlackBox::latest() const {
     }
     ticks.push_back({{"tick", record.tick},
                      {"time_ns", record.time_ns},
-                     {"wake_latency_us", record.wake_latency_ns / 1000.0},
-                     {"execution_us", record.execution_ns / 1000.0},
+                     {"wake_latency_us", static_cast<double>(record.wake_latency_ns) / 1000.0},
+                     {"execution_us", static_cast<double>(record.execution_ns) / 1000.0},
                      {"state", to_string(record.state)},
                      {"position_rad", q},
                      {"velocity_rad_s", dq},

@@ -56,9 +56,8 @@ void ControlLoop::run() noexcept {
     tick(deadline, wake);
     const std::int64_t end = rt::monotonic_now_ns();
     last_execution_ns_ = end - wake;
-    channel_.timings.push(
-        TickTiming{static_cast<std::int32_t>(wake - deadline), static_cast<std::int32_t>(last_execution_ns_),
-                   static_cast<std::int32_t>(previous_wake == 0 ? period_ns_ : wake - previous_wake)});
+    channel_.timings.push(TickTiming{wake - deadline, last_execution_ns_,
+                                     previous_wake == 0 ? period_ns_ : wake - previous_wake});
     previous_wake = wake;
     deadline += period_ns_;
     if (end > deadline) {
@@ -75,17 +74,19 @@ void ControlLoop::run() noexcept {
 void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   ++tick_count_;
   newest_sent_ns_ = 0;
-  drain_control_events(now_ns);
   handle_maintenance(now_ns);
+  if (!in_maintenance_) read_feedback(now_ns);
+  // Session starts and ends after the read, so a fallback begins from this tick's measurement.
+  drain_control_events(now_ns);
+  update_estop(now_ns);
+  update_shutdown(now_ns);
+  leave_safe_state_if_clear(now_ns);
+  // The mailbox is sampled as late as it can be: a command that arrives while the tick reads
+  // the driver still makes this tick. Session expiry needs the newest keepalives, so it
+  // follows; sessions time out on time even while maintenance holds the driver.
+  take_commands();
+  expire_sessions(now_ns);
   if (!in_maintenance_) {
-    read_feedback(now_ns);
-    update_estop(now_ns);
-    update_shutdown(now_ns);
-    // The mailbox is sampled as late as it can be: a command that arrives while the tick
-    // reads the driver still makes this tick. Session expiry needs the newest keepalives, so
-    // it follows.
-    take_commands();
-    expire_sessions(now_ns);
     if (!safe_state_ && !shutting_down_) apply_targets();
     write_command(deadline_ns, now_ns);
   }
@@ -145,10 +146,10 @@ void ControlLoop::set_behavior(std::size_t joint, Behavior behavior, control::Ga
   if (safe_state_) {
     // The safe behaviour stays in force; remember what to resume when it lifts.
     saved_modes_[joint] = mode_after(behavior);
-    if (behavior == Behavior::kDamping) joints_[joint].kd = gains.kd;
+    if (behavior == Behavior::kDamping) saved_kd_[joint] = gains.kd;
     return;
   }
-  control::apply_behavior(joints_[joint], behavior, feedback_.joints[joint], gains);
+  control::apply_behavior(joints_[joint], behavior, feedback_.joints[joint], gains, motion_limits_[joint], dt_s_);
 }
 
 void ControlLoop::expire_sessions(std::int64_t now_ns) noexcept {
@@ -191,18 +192,26 @@ void ControlLoop::apply_targets() noexcept {
       // Written by a session that has ended (its generation started here before), or by one
       // whose start event this loop has not drained yet (the snapshot can be taken after this
       // tick drained the events); a later tick applies that one once the start has arrived.
-      if (target.generation <= newest_started_generation_) {
-        owner.applied_sequence = target.sequence;
-        if (target.sequence != last_dropped_sequence_) {  // count each command once, not each joint
-          last_dropped_sequence_ = target.sequence;
-          channel_.dropped_stale.fetch_add(1, std::memory_order_relaxed);
-        }
-      }
+      if (target.generation <= newest_started_generation_) drop_stale(owner, target);
+      continue;
+    }
+    if (target.received_ns <= stale_before_ns_) {
+      // Accepted before a safe state (e-stop, fault, maintenance, a lost link) ended: the
+      // world it was meant for is gone. Only what the client sends from now on moves the joint.
+      drop_stale(owner, target);
       continue;
     }
     owner.applied_sequence = target.sequence;
     apply_target(j, target, slots_[static_cast<std::uint8_t>(owner.slot)]);
     newest_sent_ns_ = std::max(newest_sent_ns_, target.sent_ns);
+  }
+}
+
+void ControlLoop::drop_stale(JointOwner& owner, const JointTarget& target) noexcept {
+  owner.applied_sequence = target.sequence;
+  if (target.sequence != last_dropped_sequence_) {  // count each command once, not each joint
+    last_dropped_sequence_ = target.sequence;
+    channel_.dropped_stale.fetch_add(1, std::memory_order_relaxed);
   }
 }
 
@@ -238,7 +247,7 @@ void ControlLoop::apply_target(std::size_t j, const JointTarget& target, const S
   owner.previous_target = position;
   owner.previous_target_time_ns = stamp;
 
-  control::begin_tracking(joint, feedback_.joints[j], motion_limits_[j].velocity_max);
+  control::begin_tracking(joint, feedback_.joints[j], motion_limits_[j], dt_s_);
   joint.target_position = position;
   joint.target_velocity = control::clamp(velocity, -motion_limits_[j].velocity_max, motion_limits_[j].velocity_max);
   joint.target_time_ns = target.received_ns;
@@ -259,7 +268,7 @@ void ControlLoop::apply_target(std::size_t j, const JointTarget& target, const S
 void ControlLoop::update_estop(std::int64_t now_ns) noexcept {
   // A pressed e-stop input on the device engages robotd's e-stop as a client's request would;
   // it latches: releasing the button does not move anything until someone resets.
-  const bool input_pressed = have_feedback_ && feedback_.estop_input;
+  const bool input_pressed = feedback_.estop_input;
   channel_.estop_input_pressed.store(input_pressed, std::memory_order_release);
   bool by_input = false;
   if (input_pressed && !channel_.estop.load(std::memory_order_acquire)) {
@@ -277,7 +286,7 @@ void ControlLoop::update_estop(std::int64_t now_ns) noexcept {
     enter_safe_state();
     event.type = LoopEvent::Type::kEstopApplied;
   } else {
-    if (!fault_latched_) leave_safe_state();
+    channel_.estop_reached.store(false, std::memory_order_release);
     event.type = LoopEvent::Type::kEstopCleared;
   }
   post(event);
@@ -287,27 +296,31 @@ void ControlLoop::enter_safe_state() noexcept {
   if (safe_state_) return;
   for (std::size_t j = 0; j < joint_count_; ++j) {
     saved_modes_[j] = joints_[j].mode;
+    saved_kd_[j] = joints_[j].kd;
     if (joints_[j].mode == JointMode::kIdle) continue;  // a joint nobody drives stays undriven
-    control::apply_behavior(joints_[j], settings_.safe_behavior, feedback_.joints[j], gains_for(j, nullptr));
+    // The safe behaviour with the joint's own gains: nothing a client set survives it.
+    control::apply_behavior(joints_[j], settings_.safe_behavior, feedback_.joints[j], gains_for(j, nullptr),
+                            motion_limits_[j], dt_s_);
   }
   safe_state_ = true;
 }
 
-void ControlLoop::leave_safe_state() noexcept {
-  if (!safe_state_) return;
+void ControlLoop::leave_safe_state_if_clear(std::int64_t now_ns) noexcept {
+  if (!safe_state_ || estop_applied_ || fault_latched_ || in_maintenance_ || reinit_pending_ || !have_feedback_) return;
   safe_state_ = false;
+  stale_before_ns_ = now_ns;
   for (std::size_t j = 0; j < joint_count_; ++j) {
     control::JointControl& joint = joints_[j];
-    const control::Gains gains = gains_for(j, nullptr);
     switch (saved_modes_[j]) {
       // Never resume a stale target: whatever was tracking or applying torque now holds
       // where it is measured.
       case JointMode::kTrack:
       case JointMode::kTorque:
-        control::hold_measured(joint, feedback_.joints[j], gains);
+        control::hold_measured(joint, feedback_.joints[j], gains_for(j, nullptr));
         break;
       case JointMode::kDamping:
         joint.mode = JointMode::kDamping;
+        joint.kd = saved_kd_[j];
         break;
       case JointMode::kZeroTorque:
         joint.mode = JointMode::kZeroTorque;
@@ -349,11 +362,21 @@ void ControlLoop::latch_fault(const driver::FaultInfo& fault, std::int64_t now_n
 
 void ControlLoop::handle_maintenance(std::int64_t now_ns) noexcept {
   const bool requested = channel_.maintenance_requested.load(std::memory_order_acquire);
+  // An e-stop or a shutdown pre-empts maintenance: it is not begun, and one that runs is
+  // asked, on every tick, to give up, so the loop can reach the device again.
+  const bool preempted = channel_.estop.load(std::memory_order_acquire) || shutdown_requested_ ||
+                         channel_.shutdown_requested.load(std::memory_order_acquire);
   if (requested && !in_maintenance_) {
+    if (preempted) {
+      channel_.maintenance_declined.store(true, std::memory_order_release);
+      return;
+    }
     // Stop touching the driver and hand it to the maintenance thread.
     in_maintenance_ = true;
     enter_safe_state();
     channel_.maintenance_active.store(true, std::memory_order_release);
+  } else if (requested && in_maintenance_ && preempted) {
+    driver_.abort_maintenance();
   } else if (!requested && in_maintenance_) {
     in_maintenance_ = false;
     if (channel_.maintenance_clears_fault.exchange(false, std::memory_order_acq_rel)) {
@@ -364,38 +387,85 @@ void ControlLoop::handle_maintenance(std::int64_t now_ns) noexcept {
     have_feedback_ = false;
     reinit_pending_ = true;
     last_feedback_ns_ = now_ns;
+    last_finite_ns_.fill(now_ns);
+    measured_.fill(false);
+    for (auto& joint : joints_) joint.setpoint_written = false;  // what was written before may mean nothing now
     channel_.maintenance_active.store(false, std::memory_order_release);
   }
 }
 
 void ControlLoop::read_feedback(std::int64_t now_ns) noexcept {
   const driver::IoResult result = driver_.read(read_buffer_, io_fault_);
-  if (result == driver::IoResult::kOk) {
-    feedback_ = read_buffer_;
-    feedback_.joint_count = joint_count_;
-    have_feedback_ = true;
+  if (last_feedback_ns_ == 0) {
     last_feedback_ns_ = now_ns;
-    if (reinit_pending_) {
-      reinit_pending_ = false;
-      if (!fault_latched_ && !estop_applied_) leave_safe_state();
-    }
+    last_finite_ns_.fill(now_ns);
+  }
+  if (result == driver::IoResult::kOk) {
+    take_feedback(now_ns);
   } else if (is_link_problem(result)) {
     latch_io_fault(result, now_ns);
   }
-  if (last_feedback_ns_ == 0) last_feedback_ns_ = now_ns;
-  if (!fault_latched_ && now_ns - last_feedback_ns_ > settings_.feedback_timeout_ns) {
+  if (fault_latched_) return;
+  if (now_ns - last_feedback_ns_ > settings_.feedback_timeout_ns) {
     driver::FaultInfo stale;
     char text[96];
     std::snprintf(text, sizeof(text), "no feedback from the driver for %lld ms",
                   static_cast<long long>((now_ns - last_feedback_ns_) / rt::kNsPerMs));
     stale.set(kFaultNoFeedback, text);
     latch_fault(stale, now_ns);
+    return;
+  }
+  // Feedback arrives, but a joint's position or velocity has not been a number for too long.
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    if (now_ns - last_finite_ns_[j] <= settings_.feedback_timeout_ns) continue;
+    driver::FaultInfo bad;
+    char text[128];
+    std::snprintf(text, sizeof(text), "joint '%s' has reported no finite position and velocity for %lld ms",
+                  model_.joint_names[j].c_str(), static_cast<long long>((now_ns - last_finite_ns_[j]) / rt::kNsPerMs));
+    bad.set(kFaultNonFiniteFeedback, text);
+    latch_fault(bad, now_ns);
+    return;
+  }
+}
+
+void ControlLoop::take_feedback(std::int64_t now_ns) noexcept {
+  // A non-finite position or velocity (a sensor glitch, a codec's "no value") never reaches a
+  // setpoint: the joint keeps its last finite reading, for up to feedback_timeout (then the
+  // device faults, read_feedback). Efforts pass as they are (robotd computes nothing from them).
+  bool all_measured = true;
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    driver::JointFeedback& reading = read_buffer_.joints[j];
+    const bool position_finite = std::isfinite(reading.position_rad);
+    const bool velocity_finite = std::isfinite(reading.velocity_rad_s);
+    if (!position_finite) reading.position_rad = feedback_.joints[j].position_rad;
+    if (!velocity_finite) reading.velocity_rad_s = feedback_.joints[j].velocity_rad_s;
+    if (position_finite && velocity_finite) {
+      last_finite_ns_[j] = now_ns;
+      measured_[j] = true;
+    }
+    all_measured = all_measured && measured_[j];
+  }
+  feedback_ = read_buffer_;
+  feedback_.joint_count = joint_count_;
+  last_feedback_ns_ = now_ns;
+  // Until every joint has been measured there is nothing to hold or track from.
+  if (!all_measured) return;
+  have_feedback_ = true;
+  if (reinit_pending_) {
+    // The driver was out of the loop's hands: what a joint held before may mean something else
+    // now (a reconnect, a new zero). Whatever tracks starts again from where it is measured.
+    reinit_pending_ = false;
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+      if (joints_[j].mode == JointMode::kTrack) control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr));
+    }
   }
 }
 
 void ControlLoop::update_shutdown(std::int64_t now_ns) noexcept {
+  if (!shutdown_requested_) shutdown_requested_ = channel_.shutdown_requested.load(std::memory_order_acquire);
+  // The shutdown stop begins once maintenance has given the driver back.
+  if (!shutdown_requested_ || in_maintenance_) return;
   if (!shutting_down_) {
-    if (!channel_.shutdown_requested.load(std::memory_order_acquire)) return;
     shutting_down_ = true;
     shutdown_started_ns_ = now_ns;
     for (std::size_t s = 0; s < slots_.size(); ++s) {
@@ -413,17 +483,29 @@ void ControlLoop::update_shutdown(std::int64_t now_ns) noexcept {
 // --- output ---------------------------------------------------------------------------------
 
 void ControlLoop::write_command(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
+  // Nothing is commanded before the device has been measured, except the e-stop: that goes
+  // out at once in every state, with every joint that would need a measured position to
+  // hold left undriven.
+  if (!have_feedback_ && !estop_applied_) return;
   frame_.tick = tick_count_;
   frame_.tick_deadline_ns = deadline_ns;
   frame_.estop = estop_applied_;
   frame_.newest_command_sent_ns = newest_sent_ns_;
   for (std::size_t j = 0; j < joint_count_; ++j) {
-    frame_.joints[j] = control::joint_output(joints_[j], feedback_.joints[j], motion_limits_[j], dt_s_, now_ns);
+    if (!have_feedback_ && joints_[j].mode == JointMode::kTrack) {
+      frame_.joints[j] = driver::JointCommand{};
+      joints_[j].setpoint_written = false;
+    } else {
+      frame_.joints[j] = control::joint_output(joints_[j], feedback_.joints[j], motion_limits_[j], dt_s_, now_ns);
+    }
     frame_.joints[j].owned = owners_[j].slot >= 0;
   }
-  if (!have_feedback_) return;  // nothing sensible to command before the first feedback
   const driver::IoResult result = driver_.write(frame_, io_fault_);
-  if (is_link_problem(result)) latch_io_fault(result, now_ns);
+  if (is_link_problem(result)) {
+    latch_io_fault(result, now_ns);
+  } else if (estop_applied_ && !channel_.estop_reached.load(std::memory_order_relaxed)) {
+    channel_.estop_reached.store(true, std::memory_order_release);
+  }
 }
 
 DeviceState ControlLoop::current_state() const noexcept {
@@ -468,8 +550,8 @@ void ControlLoop::record_black_box(std::int64_t now_ns, std::int64_t wake_latenc
   BlackBoxRecord& record = channel_.black_box[index % kBlackBoxTicks];
   record.tick = tick_count_;
   record.time_ns = now_ns;
-  record.wake_latency_ns = static_cast<std::int32_t>(wake_latency_ns);
-  record.execution_ns = static_cast<std::int32_t>(last_execution_ns_);
+  record.wake_latency_ns = wake_latency_ns;
+  record.execution_ns = last_execution_ns_;
   record.state = current_state();
   record.joint_count = static_cast<std::uint8_t>(joint_count_);
   for (std::size_t j = 0; j < joint_count_; ++j) {

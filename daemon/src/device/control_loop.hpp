@@ -1,6 +1,8 @@
-// One device's real-time loop. Each tick (DESIGN.md "One tick of the loop"):
-//   control events → driver.read → newest targets → session timeouts → e-stop / fault /
-//   limits / rate limiting → driver.write → state, timing and black box out.
+// One device's real-time loop. Each tick (docs/design.md "One tick"):
+//   maintenance handshake → driver.read → control events → e-stop / shutdown → newest
+//   targets → session timeouts → safe state / limits / rate limiting → driver.write →
+//   state, timing and black box out.
+// The safety invariants it keeps on every tick are listed in docs/safety.md.
 // Runs on the device's RT thread: no allocation, no locks, no DDS, no logging. Everything it
 // says goes out through DeviceChannel.
 #pragma once
@@ -18,6 +20,7 @@ namespace robotd::device {
 /// robotd's own fault codes (driver codes are the vendor's, >= 0 by convention).
 inline constexpr std::int32_t kFaultNoFeedback = -1;
 inline constexpr std::int32_t kFaultLinkLost = -2;
+inline constexpr std::int32_t kFaultNonFiniteFeedback = -3;
 
 struct LoopSettings {
   double rate_hz = 1000;
@@ -65,9 +68,11 @@ class ControlLoop {
   void drain_control_events(std::int64_t now_ns) noexcept;
   void handle_maintenance(std::int64_t now_ns) noexcept;
   void read_feedback(std::int64_t now_ns) noexcept;
+  void take_feedback(std::int64_t now_ns) noexcept;
   void take_commands() noexcept;
   void expire_sessions(std::int64_t now_ns) noexcept;
   void apply_targets() noexcept;
+  void drop_stale(JointOwner& owner, const JointTarget& target) noexcept;
   void apply_target(std::size_t joint, const JointTarget& target, const SlotRuntime& slot) noexcept;
   void end_session(std::size_t slot, Behavior behavior, LoopEvent::Type why, std::int64_t now_ns,
                    std::int64_t silence_ns) noexcept;
@@ -75,7 +80,7 @@ class ControlLoop {
   void update_estop(std::int64_t now_ns) noexcept;
   void update_shutdown(std::int64_t now_ns) noexcept;
   void enter_safe_state() noexcept;
-  void leave_safe_state() noexcept;
+  void leave_safe_state_if_clear(std::int64_t now_ns) noexcept;
   void latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns, bool link_lost = false) noexcept;
   void latch_io_fault(driver::IoResult result, std::int64_t now_ns) noexcept;
   void write_command(std::int64_t deadline_ns, std::int64_t now_ns) noexcept;
@@ -94,7 +99,10 @@ class ControlLoop {
   double dt_s_;
 
   std::array<control::JointControl, kMaxJoints> joints_{};
-  std::array<control::JointMode, kMaxJoints> saved_modes_{};
+  std::array<control::JointMode, kMaxJoints> saved_modes_{};  // what to resume after the safe state
+  std::array<double, kMaxJoints> saved_kd_{};                  // the damping gain to resume with
+  std::array<std::int64_t, kMaxJoints> last_finite_ns_{};  // the joint's last finite position and velocity
+  std::array<bool, kMaxJoints> measured_{};               // a finite reading has arrived since the link came up
   std::array<JointOwner, kMaxJoints> owners_{};
   std::array<SlotRuntime, kMaxSessionsPerDevice> slots_{};
   std::array<control::MotionLimits, kMaxJoints> motion_limits_{};
@@ -106,7 +114,8 @@ class ControlLoop {
   driver::CommandFrame frame_{};
   const CommandSnapshot* commands_ = nullptr;
   std::uint32_t newest_started_generation_ = 0;
-  std::uint64_t last_dropped_sequence_ = 0;  // highest session generation whose start was drained
+  std::uint64_t last_dropped_sequence_ = 0;  // the last command counted as dropped
+  std::int64_t stale_before_ns_ = 0;         // targets received before this (a safe state's end) are stale
 
   bool have_feedback_ = false;
   std::int64_t last_feedback_ns_ = 0;
@@ -115,8 +124,9 @@ class ControlLoop {
   bool estop_applied_ = false;
   bool safe_state_ = false;
   bool in_maintenance_ = false;
-  bool reinit_pending_ = false;
-  bool shutting_down_ = false;
+  bool reinit_pending_ = false;  // maintenance ended; waiting for every joint to be measured again
+  bool shutdown_requested_ = false;
+  bool shutting_down_ = false;  // the shutdown stop is running (not before maintenance has let go)
   std::int64_t shutdown_started_ns_ = 0;
   bool finished_ = false;
   std::int64_t newest_sent_ns_ = 0;

@@ -142,22 +142,35 @@ void Device::stop() {
 Result<void> Device::run_maintenance(const std::function<Result<void>(driver::Driver&)>& work, bool clears_fault,
                                      std::chrono::milliseconds timeout) {
   const std::lock_guard lock(maintenance_mutex_);
+  channel_->maintenance_declined.store(false, std::memory_order_release);
   channel_->maintenance_requested.store(true, std::memory_order_release);
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!channel_->maintenance_active.load(std::memory_order_acquire)) {
-    if (std::chrono::steady_clock::now() > deadline || !thread_.joinable()) {
+    const bool declined = channel_->maintenance_declined.exchange(false, std::memory_order_acq_rel);
+    if (declined || std::chrono::steady_clock::now() > deadline || !thread_.joinable()) {
       channel_->maintenance_requested.store(false, std::memory_order_release);
+      if (declined) return make_error(ErrorCode::kRefused, preempted_by());
       return make_error(ErrorCode::kTimeout, "device '" + config_.name + "': the loop did not pause for maintenance");
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   Result<void> result = work(plugin_->driver());
+  // The loop asks the driver to abort maintenance while an e-stop or a shutdown waits.
+  const bool preempted =
+      channel_->estop.load(std::memory_order_acquire) || channel_->shutdown_requested.load(std::memory_order_acquire);
+  if (!result && preempted) result = make_error(ErrorCode::kRefused, "aborted: " + preempted_by());
   channel_->maintenance_clears_fault.store(result.ok() && clears_fault, std::memory_order_release);
   channel_->maintenance_requested.store(false, std::memory_order_release);
   while (channel_->maintenance_active.load(std::memory_order_acquire) && thread_.joinable()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return result;
+}
+
+std::string Device::preempted_by() const {
+  return channel_->shutdown_requested.load(std::memory_order_acquire)
+             ? "robotd is shutting down"
+             : "the e-stop of '" + config_.name + "' is engaged; reset it first";
 }
 
 void Device::set_estop_note(std::string note) {

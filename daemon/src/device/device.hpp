@@ -37,6 +37,8 @@ class Device {
 
   /// Pauses the loop's driver I/O, runs `work` on the calling thread, resumes. If `work`
   /// succeeds and `clears_fault`, a latched fault is cleared. Joints then hold where measured.
+  /// An e-stop or a shutdown pre-empts it: refused if one is pending, aborted (through the
+  /// driver's abort_maintenance) if one comes while `work` runs.
   Result<void> run_maintenance(const std::function<Result<void>(driver::Driver&)>& work, bool clears_fault,
                                std::chrono::milliseconds timeout);
 
@@ -53,6 +55,8 @@ class Device {
   std::string estop_note() const;
 
  private:
+  std::string preempted_by() const;
+
   config::DeviceConfig config_;
   std::unique_ptr<plugin::LoadedDriver> plugin_;
   control::DeviceModel model_;

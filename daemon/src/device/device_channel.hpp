@@ -83,9 +83,9 @@ struct LoopEvent {
 };
 
 struct TickTiming {
-  std::int32_t wake_latency_ns = 0;  // actual wake − deadline
-  std::int32_t execution_ns = 0;     // wake → end of tick
-  std::int32_t period_ns = 0;        // wake − previous wake
+  std::int64_t wake_latency_ns = 0;  // actual wake − deadline
+  std::int64_t execution_ns = 0;     // wake → end of tick
+  std::int64_t period_ns = 0;        // wake − previous wake
 };
 
 /// The loop's latest view of the device, published every tick.
@@ -113,8 +113,8 @@ struct BlackBoxJoint {
 struct BlackBoxRecord {
   std::uint64_t tick = 0;
   std::int64_t time_ns = 0;
-  std::int32_t wake_latency_ns = 0;
-  std::int32_t execution_ns = 0;
+  std::int64_t wake_latency_ns = 0;
+  std::int64_t execution_ns = 0;
   DeviceState state = DeviceState::kConnecting;
   std::uint8_t joint_count = 0;
   std::array<BlackBoxJoint, kMaxJoints> joints{};
@@ -137,8 +137,10 @@ struct DeviceChannel {
 
   std::atomic<bool> estop{false};
   std::atomic<bool> estop_input_pressed{false};  // RT → services: the device's e-stop input, now
+  std::atomic<bool> estop_reached{false};        // RT → services: an e-stop frame was written since the engagement
   std::atomic<bool> maintenance_requested{false};
-  std::atomic<bool> maintenance_active{false};  // RT ack: no driver I/O until cleared
+  std::atomic<bool> maintenance_active{false};    // RT ack: no driver I/O until cleared
+  std::atomic<bool> maintenance_declined{false};  // RT: not begun, an e-stop or shutdown is pending
   std::atomic<bool> maintenance_clears_fault{false};
   std::atomic<bool> shutdown_requested{false};
   std::atomic<bool> stopped{false};

@@ -26,26 +26,26 @@ std::vector<TickTiming> LoopStatisticsWindow::samples() const {
   return ordered;
 }
 
-Percentiles percentiles(std::vector<std::int32_t>& values) {
+Percentiles percentiles(std::vector<std::int64_t>& values) {
   if (values.empty()) return {};
   const auto rank = [&](double q) {
     const auto index = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size()))) - 1;
     const auto nth = values.begin() + static_cast<std::ptrdiff_t>(std::min(index, values.size() - 1));
     std::nth_element(values.begin(), nth, values.end());
-    return static_cast<float>(*nth) / 1000.0F;
+    return static_cast<float>(static_cast<double>(*nth) / 1000.0);
   };
   Percentiles out;
   out.p50 = rank(0.50);
   out.p99 = rank(0.99);
   out.p999 = rank(0.999);
-  out.max = static_cast<float>(*std::max_element(values.begin(), values.end())) / 1000.0F;
+  out.max = static_cast<float>(static_cast<double>(*std::max_element(values.begin(), values.end())) / 1000.0);
   return out;
 }
 
 LoopStatistics LoopStatisticsWindow::summarize() const {
-  std::vector<std::int32_t> period;
-  std::vector<std::int32_t> latency;
-  std::vector<std::int32_t> execution;
+  std::vector<std::int64_t> period;
+  std::vector<std::int64_t> latency;
+  std::vector<std::int64_t> execution;
   period.reserve(count_);
   latency.reserve(count_);
   execution.reserve(count_);

@@ -36,6 +36,6 @@ struct Percentiles {
 };
 
 /// Percentiles of `values` (reordered in place), nearest-rank.
-Percentiles percentiles(std::vector<std::int32_t>& values);
+Percentiles percentiles(std::vector<std::int64_t>& values);
 
 }  // namespace robotd::device

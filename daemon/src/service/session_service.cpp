@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "rt/monotonic_clock.hpp"
+#include "service/session_events.hpp"
 #include "session/session_uuid.hpp"
 
 namespace robotd::service {
@@ -13,26 +14,6 @@ std::vector<const control::DeviceModel*> models_of(const std::vector<device::Dev
   models.reserve(devices.size());
   for (const auto* device : devices) models.push_back(&device->model());
   return models;
-}
-
-device::ControlEvent start_event(const session::SessionRecord& record) {
-  device::ControlEvent event;
-  event.type = device::ControlEvent::Type::kSessionStart;
-  event.slot = record.slot;
-  event.generation = record.generation;
-  event.mode = record.mode;
-  event.behavior = record.applied_behavior;
-  event.timeout_ns = static_cast<std::int64_t>(record.timeout_ms) * rt::kNsPerMs;
-  event.granted_ns = record.granted_ns;
-  event.motors = record.motors;
-  event.default_kp.fill(device::kNoGain);
-  event.default_kd.fill(device::kNoGain);
-  for (std::size_t i = 0; i < record.motor_ids.size(); ++i) {
-    const auto joint = static_cast<std::size_t>(record.motor_ids[i]);
-    if (!record.default_kp.empty()) event.default_kp[joint] = record.default_kp[i];
-    if (!record.default_kd.empty()) event.default_kd[joint] = record.default_kd[i];
-  }
-  return event;
 }
 
 std::string state_refusal(DeviceState state, const std::string& device) {
@@ -80,7 +61,7 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
       return response;
     }
     const session::SessionRecord& record = granted.value();
-    if (!device.channel().post(start_event(record))) {
+    if (!device.channel().post(session_start_event(record))) {
       (void)table_.release(record.uuid);
       response.message =
           "device '" + device.model().name + "' is busy (its loop has not taken the last requests); retry";
@@ -122,12 +103,7 @@ ReleaseControlResponse SessionService::release_control(const ReleaseControlReque
     const session::SessionRecord& record = released.value();
     device::Device& device = *devices_[record.device_index];
     const Behavior applied = control::applied_behavior(request.release_mode, device.model().behaviors);
-    device::ControlEvent event;
-    event.type = device::ControlEvent::Type::kSessionRelease;
-    event.slot = record.slot;
-    event.generation = record.generation;
-    event.behavior = applied;
-    if (!device.channel().post(event)) {
+    if (!device.channel().post(session_release_event(record, applied))) {
       // The loop is not draining its events; its timeout still ends the session.
       spdlog::error("device '{}': release of session {} could not be queued; it will time out instead", record.device,
                     session::redacted_uuid(record.uuid));

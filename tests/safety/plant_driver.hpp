@@ -1,0 +1,72 @@
+// A driver with a simulated mechanism behind it, for the safety scenarios: joints with inertia,
+// gravity and the command each tick asked for, plus every misbehaviour a scenario injects
+// (faults, a lost link, silence, non-finite readings, a pressed e-stop button, joints moved
+// by hand). It records what the loop wrote and what it read, for the invariant checker.
+#pragma once
+
+#include <array>
+#include <span>
+
+#include "robotd/driver/driver.hpp"
+#include "scenario.hpp"
+
+namespace robotd::safety {
+
+class PlantDriver final : public driver::Driver {
+ public:
+  explicit PlantDriver(const DeviceSpec& spec);
+
+  Result<void> configure(const nlohmann::json& /*params*/) override { return {}; }
+  driver::DeviceDescription describe() const override { return {}; }
+  Result<void> connect() override { return {}; }
+  void disconnect() noexcept override {}
+  Result<void> recover() override;
+  Result<void> reset_zero(std::span<const int> joints) override;
+  void abort_maintenance() noexcept override { abort_requested = true; }
+
+  driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
+  driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
+
+  Result<nlohmann::json> call(const std::string& op, const nlohmann::json& /*args*/) override {
+    return make_error(ErrorCode::kRefused, "no op " + op);
+  }
+  driver::Diagnostics diagnostics() const override { return {}; }
+
+  /// Moves the mechanism one period under the command written this tick (or none).
+  void advance(double dt_s) noexcept;
+
+  // What the scenario injects.
+  int fault_code = 0;  // nonzero: read reports this fault
+  bool link_up = true;
+  bool silent = false;
+  bool estop_input = false;
+  std::array<std::array<bool, 3>, driver::kMaxJoints> non_finite{};  // [joint][FeedbackField]
+  void teleport(std::size_t joint, double position) noexcept;
+
+  // What the loop did this tick.
+  bool wrote = false;
+  driver::CommandFrame frame{};
+  bool read_called = false;
+  driver::IoResult read_result = driver::IoResult::kNoNewData;
+  bool read_ok = false;
+  driver::Feedback read_feedback{};
+  bool abort_requested = false;
+
+  /// Clears the per-tick records before a tick.
+  void begin_tick() noexcept;
+
+ private:
+  driver::IoResult read_unrecorded(driver::Feedback& out, driver::FaultInfo& fault) noexcept;
+
+  struct Joint {
+    double position = 0;
+    double velocity = 0;
+    double effort = 0;
+  };
+  std::size_t joint_count_;
+  std::array<Joint, driver::kMaxJoints> joints_{};
+  driver::CommandFrame last_written_{};
+  bool have_written_ = false;
+};
+
+}  // namespace robotd::safety
