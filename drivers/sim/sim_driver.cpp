@@ -116,7 +116,7 @@ Result<void> SimDriver::reset_zero(std::span<const int> joints) {
                                                          " (exclusive)");
     }
   }
-  const SimSnapshot snapshot = snapshot_.load();
+  const SimSnapshot snapshot = snapshot_.load_non_rt();
   const auto zero_here = [&](std::size_t joint) {
     zero_offset_rad_[joint].store(snapshot.joints[joint].physical_position_rad);
   };

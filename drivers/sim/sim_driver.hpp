@@ -149,7 +149,7 @@ class SimDriver final : public driver::Driver {
 template <class Change>
 void SimDriver::change_injected_faults(Change change) {
   const std::lock_guard lock(injected_faults_writer_mutex_);
-  InjectedFaults faults = injected_faults_.load();
+  InjectedFaults faults = injected_faults_.load_non_rt();
   change(faults);
   injected_faults_.store(faults);
 }

@@ -124,8 +124,8 @@ driver::DeviceDescription SimDriver::describe() const {
 }
 
 driver::Diagnostics SimDriver::diagnostics() const {
-  const SimSnapshot snapshot = snapshot_.load();
-  const InjectedFaults injected = injected_faults_.load();
+  const SimSnapshot snapshot = snapshot_.load_non_rt();
+  const InjectedFaults injected = injected_faults_.load_non_rt();
   const bool connected = connected_.load();
   return {
       {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
@@ -265,7 +265,7 @@ Result<nlohmann::json> SimDriver::set_imu(const nlohmann::json& args) {
   if (!errors.empty()) return invalid_arguments("set_imu", errors);
 
   const std::lock_guard lock(imu_writer_mutex_);
-  driver::ImuSample sample = imu_.load();
+  driver::ImuSample sample = imu_.load_non_rt();
   if (quaternion) {
     for (std::size_t i = 0; i < 4; ++i) sample.orientation_xyzw[i] = (*quaternion)[i] / norm;
   }
@@ -343,8 +343,8 @@ std::optional<std::size_t> SimDriver::joint_argument(JsonReader& reader, const n
 Result<nlohmann::json> SimDriver::state(const nlohmann::json& args) const {
   if (auto error = unexpected_arguments("state", args)) return *error;
 
-  const SimSnapshot snapshot = snapshot_.load();
-  const InjectedFaults injected = injected_faults_.load();
+  const SimSnapshot snapshot = snapshot_.load_non_rt();
+  const InjectedFaults injected = injected_faults_.load_non_rt();
   nlohmann::json joints = nlohmann::json::array();
   for (std::size_t i = 0; i < snapshot.joint_count; ++i) {
     const SimJointSnapshot& joint = snapshot.joints[i];

@@ -77,7 +77,7 @@ class Parol6Driver final : public driver::Driver {
   bool send_frame(const HostFrame& frame) noexcept;
   void publish_snapshot() noexcept;
 
-  BoardSnapshot snapshot() const { return snapshot_.load(); }
+  BoardSnapshot snapshot() const { return snapshot_.load_non_rt(); }
 
   Parol6Params params_;
   bool configured_ = false;

@@ -381,6 +381,6 @@ void PiperDriver::publish_snapshot() noexcept {
   snapshot_.store(snapshot);
 }
 
-ArmSnapshot PiperDriver::snapshot() const { return snapshot_.load(); }
+ArmSnapshot PiperDriver::snapshot() const { return snapshot_.load_non_rt(); }
 
 }  // namespace robotd::piper

@@ -61,9 +61,11 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   tcp_out_.clear();
   link_counters_ = LinkCounters{};
   counters_.store(link_counters_);
-  feedback_.store(ArmFeedback{});
+  latest_ = ArmFeedback{};
+  feedback_.store(latest_);
   health_.store(LinkHealth{});
   target_.store(StreamTarget{});
+  target_read_ = StreamTarget{};
   restart_stream_.store(true);
   stopping_.store(false);
   feedback_sequence_ = 0;
@@ -380,6 +382,7 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
   out.joint_errors = sample.joint_errors;
   out.fault = arm_fault(sample.errors, std::span(sample.joint_errors.data(), settings_.dof));
   out.sequence = ++feedback_sequence_;
+  latest_ = out;
   feedback_.store(out);
   if (stopping_.load(std::memory_order_acquire) && at_rest(out, nullptr)) {
     stopping_.store(false, std::memory_order_release);
@@ -390,7 +393,11 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
 void ControllerLink::stream(Clock::time_point now) {
   next_stream_at_ += settings_.command_period;
   if (next_stream_at_ <= now) next_stream_at_ = now + settings_.command_period;  // late: skip, do not burst
-  const StreamTarget target = target_.load();
+  // Never wait for the RT thread's store: with io_priority at or above the loop's (or a loop
+  // without SCHED_FIFO) the writer may not get the CPU back while this thread waits. A store in
+  // progress means the previous target, one command period longer.
+  (void)target_.try_load(target_read_);
+  const StreamTarget target = target_read_;
   if (target.estop) {
     if (!estop_sent_) send_unawaited(plain_request("set_arm_stop"));
     estop_sent_ = true;
@@ -398,7 +405,7 @@ void ControllerLink::stream(Clock::time_point now) {
     return;
   }
   estop_sent_ = false;
-  const ArmFeedback measured = feedback_.load();
+  const ArmFeedback& measured = latest_;
   if (!target.active) {
     // The session ended or timed out while the arm was still on its way (low follow, filtering):
     // decelerate and stop on the path. Planned moves wait until it is at rest (stopping()).

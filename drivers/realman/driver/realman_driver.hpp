@@ -43,7 +43,7 @@ class RealmanDriver final : public driver::Driver {
 
   Result<void> connect_locked();
   /// RT: false, with the reason in `fault`, while not connected or the link is lost.
-  bool link_up(driver::FaultInfo& fault) const noexcept;
+  bool link_up(driver::FaultInfo& fault) noexcept;
   /// Reads the controller's model and firmware and checks the model against the config.
   Result<void> check_software();
   Result<void> start_push();
@@ -66,6 +66,7 @@ class RealmanDriver final : public driver::Driver {
   std::atomic<bool> session_streaming_{false};  // for the ops: a session owns joints
 
   // RT thread.
+  LinkHealth rt_health_;  // the newest health read()/write() could read
   std::uint64_t last_sequence_ = 0;
   ArmFeedback rt_feedback_;  // the newest read(); write() holds unowned joints where it measured them
   driver::FaultInfo not_connected_fault_;

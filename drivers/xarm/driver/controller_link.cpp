@@ -66,6 +66,7 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   feedback_.store(latest_);
   health_.store(LinkHealth{});
   target_.store(StreamTarget{});
+  target_read_ = StreamTarget{};
   restart_requested_.store(false);
   feedback_sequence_ = 0;
   last_report_at_ = {};

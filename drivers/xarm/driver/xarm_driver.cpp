@@ -77,6 +77,7 @@ Result<void> XarmDriver::connect_locked() {
     return ready;
   }
   last_sequence_ = 0;
+  rt_health_ = LinkHealth{};
   connected_.store(true, std::memory_order_release);
   return {};
 }
@@ -165,19 +166,21 @@ Result<void> XarmDriver::reset_zero(std::span<const int> /*joints*/) {
                     "xArm joints have absolute encoders; their zero is set with UFACTORY's tools, not through robotd");
 }
 
-bool XarmDriver::link_up(driver::FaultInfo& fault) const noexcept {
+bool XarmDriver::link_up(driver::FaultInfo& fault) noexcept {
   if (!connected_.load(std::memory_order_acquire)) {
     fault = not_connected_fault_;
     return false;
   }
-  const LinkHealth health = link_.health();
-  if (health.lost) fault = health.reason;
-  return !health.lost;
+  (void)link_.try_health(rt_health_);  // the link thread mid-store: the previous health, one tick longer
+  if (rt_health_.lost) fault = rt_health_.reason;
+  return !rt_health_.lost;
 }
 
 driver::IoResult XarmDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
   if (!link_up(fault)) return driver::IoResult::kDisconnected;
-  rt_feedback_ = link_.feedback();
+  // The link thread mid-store (the RT thread may have preempted it): no new data this tick, and
+  // write() keeps the previous feedback.
+  if (!link_.try_feedback(rt_feedback_)) return driver::IoResult::kNoNewData;
   if (rt_feedback_.sequence == last_sequence_) return driver::IoResult::kNoNewData;
   last_sequence_ = rt_feedback_.sequence;
   const std::size_t dof = params_.model.dof;

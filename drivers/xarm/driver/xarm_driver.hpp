@@ -41,7 +41,7 @@ class XarmDriver final : public driver::Driver {
 
   Result<void> connect_locked();
   /// RT: false, with the reason in `fault`, while not connected or the link is lost.
-  bool link_up(driver::FaultInfo& fault) const noexcept;
+  bool link_up(driver::FaultInfo& fault) noexcept;
   /// Reads get_version and checks the arm against params.model.
   Result<void> check_version();
   Result<void> await_report();
@@ -61,6 +61,7 @@ class XarmDriver final : public driver::Driver {
   std::atomic<bool> session_streaming_{false};  // for the ops: a session owns joints
 
   // RT thread.
+  LinkHealth rt_health_;  // the newest health read()/write() could read
   std::uint64_t last_sequence_ = 0;
   ArmFeedback rt_feedback_;  // the newest read(); write() holds unowned joints where it measured them
   driver::FaultInfo not_connected_fault_;
