@@ -36,6 +36,7 @@ class RecordingDriver final : public driver::Driver {
   void disconnect() noexcept override {}
   Result<void> recover() override { return {}; }
   Result<void> reset_zero(std::span<const int> /*joints*/) override { return {}; }
+  void abort_maintenance() noexcept override { ++abort_requests; }
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override {
     ++reads;
@@ -60,6 +61,7 @@ class RecordingDriver final : public driver::Driver {
   driver::FaultInfo fault_to_report{};
   std::vector<driver::CommandFrame> frames;
   int reads = 0;
+  int abort_requests = 0;
 };
 
 control::JointTargetUpdate position_target(std::uint8_t joint, float position) {

@@ -35,10 +35,10 @@ driver::FaultInfo fault_of(std::int32_t code, const std::string& text) {
 
 }  // namespace
 
-Result<void> ControllerLink::open(const LinkSettings& settings) {
+Result<void> ControllerLink::open(const LinkSettings& settings, const driver::AbortFlag* abort) {
   close();
   settings_ = settings;
-  auto tcp = transport::connect_tcp(settings.controller, settings.connect_timeout);
+  auto tcp = transport::connect_tcp(settings.controller, settings.connect_timeout, abort);
   if (!tcp) return tcp.error();
   tcp_ = std::move(tcp).value();
   if (settings.push) {
@@ -121,14 +121,17 @@ Result<ControllerLink::Reply> ControllerLink::request(const nlohmann::json& mess
     queue_.push_back(Outgoing{frame(message), std::move(request)});
   }
   wake();
-  if (reply_future.wait_for(options.reply_timeout + kCallerSlack) != std::future_status::ready) {
+  const auto aborted = [&] { return options.abort != nullptr && options.abort->requested(); };
+  if (!driver::wait_ready(reply_future, options.reply_timeout + kCallerSlack, options.abort)) {
+    if (aborted()) return driver::aborted_error("waiting for the reply to " + command);
     return make_error(ErrorCode::kTimeout, "no reply to " + command + " from the controller");
   }
   Result<nlohmann::json> body = reply_future.get();
   if (!body) return body.error();
   Reply reply{std::move(body).value(), std::nullopt};
   if (!options.completion) return reply;
-  if (completion_future.wait_for(options.completion_timeout + kCallerSlack) != std::future_status::ready) {
+  if (!driver::wait_ready(completion_future, options.completion_timeout + kCallerSlack, options.abort)) {
+    if (aborted()) return driver::aborted_error("waiting for " + command + " to complete");
     return make_error(ErrorCode::kTimeout, command + " did not complete");
   }
   Result<TrajectoryEvent> event = completion_future.get();

@@ -23,6 +23,7 @@
 
 #include "codec/realman_codec.hpp"
 #include "driver/request_tracker.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/result.hpp"
@@ -87,6 +88,7 @@ struct RequestOptions {
   std::chrono::milliseconds reply_timeout{1000};
   std::optional<Device> completion;  // wait for this device's current_trajectory_state too
   std::chrono::milliseconds completion_timeout{60'000};
+  const driver::AbortFlag* abort = nullptr;  // maintenance: ends the waits early
 };
 
 class ControllerLink {
@@ -97,8 +99,8 @@ class ControllerLink {
   ~ControllerLink() { close(); }
 
   /// Connects TCP, binds the push socket and starts the link thread. kNotAvailable when the
-  /// controller is not reachable.
-  Result<void> open(const LinkSettings& settings);
+  /// controller is not reachable. `abort` (maintenance) ends the connection attempt early.
+  Result<void> open(const LinkSettings& settings, const driver::AbortFlag* abort = nullptr);
   void close() noexcept;
   bool is_open() const { return io_.running(); }
 

@@ -1,7 +1,6 @@
 #include "driver/realman_driver.hpp"
 
 #include <algorithm>
-#include <thread>
 
 #include "driver/realman_ops.hpp"
 #include "robotd/driver/position_targets.hpp"
@@ -41,6 +40,7 @@ driver::DeviceDescription RealmanDriver::describe() const {
 
 Result<void> RealmanDriver::connect() {
   if (!configured_) return make_error(ErrorCode::kInvalidArgument, "the realman driver was not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
   return connect_locked();
 }
@@ -63,7 +63,7 @@ Result<void> RealmanDriver::connect_locked() {
       .pass_through = params_.pass_through,
       .io_priority = params_.io_priority,
   };
-  auto opened = link_.open(settings);
+  auto opened = link_.open(settings, &abort_);
   Result<void> ready = opened ? check_software() : opened;
   if (ready && params_.push.enabled) ready = start_push();
   if (ready) ready = await_feedback();
@@ -123,7 +123,7 @@ Result<void> RealmanDriver::await_feedback() {
     const LinkHealth health = link_.health();
     if (health.lost) return make_error(ErrorCode::kNotAvailable, health.reason.text.data());
     if (link_.feedback().sequence > 0) return {};
-    std::this_thread::sleep_for(kFeedbackPoll);
+    if (!abort_.sleep_for(kFeedbackPoll)) return driver::aborted_error("waiting for the first feedback");
   }
   const std::string waited = std::to_string(wait.count()) + " ms";
   if (params_.push.enabled) {
@@ -146,11 +146,14 @@ void RealmanDriver::disconnect() noexcept {
 }
 
 Result<void> RealmanDriver::recover() {
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
-  if (!connected_.load(std::memory_order_acquire) || link_.health().lost) return connect_locked();
+  if (!connected_.load(std::memory_order_acquire) || link_.health().lost) {
+    return abort_.verdict(connect_locked(), "recover");
+  }
   auto cleared = clear_errors();
   link_.restart_stream();
-  return cleared;
+  return abort_.verdict(cleared, "recover");
 }
 
 Result<void> RealmanDriver::clear_errors() {
@@ -165,7 +168,7 @@ Result<void> RealmanDriver::clear_errors() {
   while (Clock::now() < deadline) {
     now = link_.feedback();
     if (now.sequence > before.sequence && now.fault.code == 0) return {};
-    std::this_thread::sleep_for(kFeedbackPoll);
+    if (!abort_.sleep_for(kFeedbackPoll)) return driver::aborted_error("waiting for the errors to clear");
   }
   return make_error(ErrorCode::kRefused, std::string("errors cleared, but ") + now.fault.text.data());
 }
@@ -225,7 +228,9 @@ Result<nlohmann::json> RealmanDriver::call(const std::string& op, const nlohmann
 }
 
 Result<ControllerLink::Reply> RealmanDriver::request(const nlohmann::json& message) {
-  return link_.request(message, default_options());
+  RequestOptions options = default_options();
+  options.abort = &abort_;
+  return link_.request(message, options);
 }
 
 Result<ControllerLink::Reply> RealmanDriver::request(const nlohmann::json& message, const RequestOptions& options) {

@@ -18,6 +18,7 @@
 #include "driver/arm_fault.hpp"
 #include "driver/controller_link.hpp"
 #include "driver/realman_params.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 
 namespace robotd::realman {
@@ -31,6 +32,7 @@ class RealmanDriver final : public driver::Driver {
   void disconnect() noexcept override;
   Result<void> recover() override;
   Result<void> reset_zero(std::span<const int> joints) override;
+  void abort_maintenance() noexcept override { abort_.request(); }
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
   driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
@@ -49,7 +51,7 @@ class RealmanDriver final : public driver::Driver {
   Result<void> start_push();
   Result<void> await_feedback();
   Result<void> clear_errors();
-  /// With the configured request timeout.
+  /// For connect and recover: the configured request timeout, and abort_ ends the wait.
   Result<ControllerLink::Reply> request(const nlohmann::json& message);
   Result<ControllerLink::Reply> request(const nlohmann::json& message, const RequestOptions& options);
   RequestOptions default_options() const;
@@ -57,8 +59,9 @@ class RealmanDriver final : public driver::Driver {
   RealmanParams params_;
   bool configured_ = false;
   ControllerLink link_;
-  std::mutex link_mutex_;  // connect / recover / disconnect; never taken by the RT thread
-  std::mutex ops_mutex_;   // one op at a time
+  std::mutex link_mutex_;    // connect / recover / disconnect; never taken by the RT thread
+  std::mutex ops_mutex_;     // one op at a time
+  driver::AbortFlag abort_;  // abort_maintenance(): connect and recover stop waiting
   std::string product_version_;
   std::string controller_version_;
 

@@ -24,6 +24,7 @@
 
 #include "codec/xarm_codec.hpp"
 #include "driver/transaction_table.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/result.hpp"
@@ -104,13 +105,15 @@ class ControllerLink {
   ~ControllerLink() { close(); }
 
   /// Connects the command and report ports and starts the link thread. kNotAvailable when the
-  /// control box is not reachable.
-  Result<void> open(const LinkSettings& settings);
+  /// control box is not reachable. `abort` (maintenance) ends the connection attempts early.
+  Result<void> open(const LinkSettings& settings, const driver::AbortFlag* abort = nullptr);
   void close() noexcept;
   bool is_open() const { return io_.running(); }
 
-  /// Sends `request` and waits for its reply. Any non-RT thread.
-  Result<Reply> request(const Request& request, std::chrono::milliseconds timeout);
+  /// Sends `request` and waits for its reply. Any non-RT thread; `abort` (maintenance) ends the
+  /// wait early (the reply, when it comes, is then dropped).
+  Result<Reply> request(const Request& request, std::chrono::milliseconds timeout,
+                        const driver::AbortFlag* abort = nullptr);
   /// Re-reads the controller's codes now, and starts servo mode afresh if a session streams
   /// (after recover() reset the arm).
   void restart();

@@ -7,6 +7,7 @@
 //     lock a mutex another thread holds, log, or block beyond a short bounded time.
 //   call, diagnostics — called from non-RT threads while the RT loop runs; the driver makes
 //     them safe against read/write (atomics, lock-free queues).
+//   abort_maintenance — any thread, including the RT loop, at any time.
 // Errors cross this boundary as values; no exception may escape a driver method.
 #pragma once
 
@@ -25,7 +26,7 @@
 namespace robotd::driver {
 
 /// Bump when anything in this header or types.hpp changes layout or meaning.
-inline constexpr std::uint32_t kAbiVersion = 4;
+inline constexpr std::uint32_t kAbiVersion = 5;
 
 struct JointLimits {
   double position_min_rad = -3.14;
@@ -83,6 +84,12 @@ class Driver {
   /// Clears a latched fault and re-establishes the link if needed.
   virtual Result<void> recover() = 0;
   virtual Result<void> reset_zero(std::span<const int> joints) = 0;
+  /// Makes a recover() or reset_zero() that runs on another thread give up and return an
+  /// error as soon as it can: an e-stop or a shutdown must not wait for maintenance. robotd's
+  /// RT loop calls it on every tick while an e-stop or a shutdown waits for maintenance, so it
+  /// must only store to an atomic and return: no lock, no allocation, no I/O, no logging.
+  /// recover() and reset_zero() clear the request when they start.
+  virtual void abort_maintenance() noexcept = 0;
 
   /// Before a successful connect() or recover(), read and write return kDisconnected.
   virtual IoResult read(Feedback& out, FaultInfo& fault) noexcept = 0;
