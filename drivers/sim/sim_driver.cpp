@@ -1,6 +1,7 @@
 #include "sim_driver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -94,8 +95,10 @@ Result<void> SimDriver::connect() {
 void SimDriver::disconnect() noexcept { connected_.store(false); }
 
 Result<void> SimDriver::recover() {
+  abort_.clear();
   if (!configured_) return make_error(ErrorCode::kRefused, "recover: the sim driver is not configured");
   recover_calls_.fetch_add(1);
+  if (!wait_as_asked()) return driver::aborted_error("recover (waiting as slow_maintenance asked)");
   const std::int64_t down_for_ns = link_down_until_ns_.load() - monotonic_now_ns();
   if (down_for_ns > 0) {
     return make_error(ErrorCode::kNotAvailable, "simulated link still down for another " +
@@ -108,6 +111,7 @@ Result<void> SimDriver::recover() {
 }
 
 Result<void> SimDriver::reset_zero(std::span<const int> joints) {
+  abort_.clear();
   const std::size_t joint_count = params_.joints.size();
   for (const int joint : joints) {
     if (joint < 0 || static_cast<std::size_t>(joint) >= joint_count) {
@@ -116,7 +120,8 @@ Result<void> SimDriver::reset_zero(std::span<const int> joints) {
                                                          " (exclusive)");
     }
   }
-  const SimSnapshot snapshot = snapshot_.load();
+  if (!wait_as_asked()) return driver::aborted_error("reset_zero (waiting as slow_maintenance asked)");
+  const SimSnapshot snapshot = snapshot_.load_non_rt();
   const auto zero_here = [&](std::size_t joint) {
     zero_offset_rad_[joint].store(snapshot.joints[joint].physical_position_rad);
   };
@@ -125,6 +130,11 @@ Result<void> SimDriver::reset_zero(std::span<const int> joints) {
   }
   for (const int joint : joints) zero_here(static_cast<std::size_t>(joint));
   return {};
+}
+
+bool SimDriver::wait_as_asked() {
+  const std::int64_t wait_ns = maintenance_wait_ns_.exchange(0);
+  return wait_ns <= 0 || abort_.sleep_for(std::chrono::nanoseconds(wait_ns));
 }
 
 IoResult SimDriver::read(Feedback& out, FaultInfo& fault) noexcept { return read_at(monotonic_now_ns(), out, fault); }

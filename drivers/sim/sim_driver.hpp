@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "joint_dynamics.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/json_reader.hpp"
 #include "robotd/driver/seqlock.hpp"
@@ -74,6 +75,9 @@ class SimDriver final : public driver::Driver {
   /// Each listed joint then reads 0 where it stands; an empty list means every joint. The
   /// configured limits stay in the reported frame, so the hard stops move with the zero.
   Result<void> reset_zero(std::span<const int> joints) override;
+  /// recover() and reset_zero() are instant unless slow_maintenance made them wait: then it ends
+  /// that wait with an error.
+  void abort_maintenance() noexcept override { abort_.request(); }
 
   /// Advances the simulation by the CLOCK_MONOTONIC time since the previous read().
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
@@ -101,6 +105,9 @@ class SimDriver final : public driver::Driver {
   Result<nlohmann::json> raise_fault(const nlohmann::json& args);
   Result<nlohmann::json> set_external_torque(const nlohmann::json& args);
   Result<nlohmann::json> stall(const nlohmann::json& args);
+  Result<nlohmann::json> slow_maintenance(const nlohmann::json& args);
+  /// The wait slow_maintenance asked of this recover() or reset_zero(); false when aborted.
+  bool wait_as_asked();
   Result<nlohmann::json> set_imu(const nlohmann::json& args);
   Result<nlohmann::json> command_latency(const nlohmann::json& args);
   Result<nlohmann::json> state(const nlohmann::json& args) const;
@@ -118,7 +125,9 @@ class SimDriver final : public driver::Driver {
   std::atomic<std::uint64_t> link_generation_{0};
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
-  std::atomic<std::int64_t> stall_ns_{0};        // the next read() blocks this long (a hung bus)
+  std::atomic<std::int64_t> stall_ns_{0};             // the next read() blocks this long (a hung bus)
+  std::atomic<std::int64_t> maintenance_wait_ns_{0};  // the next recover() or reset_zero() waits this long
+  driver::AbortFlag abort_;
   std::atomic<bool> estop_input_{false};         // the simulated controller's e-stop button
   std::atomic<std::uint64_t> recover_calls_{0};  // how often robotd (or a person) tried recover()
   // An injected disconnect lasts until this CLOCK_MONOTONIC time: recover() fails before it.
@@ -149,7 +158,7 @@ class SimDriver final : public driver::Driver {
 template <class Change>
 void SimDriver::change_injected_faults(Change change) {
   const std::lock_guard lock(injected_faults_writer_mutex_);
-  InjectedFaults faults = injected_faults_.load();
+  InjectedFaults faults = injected_faults_.load_non_rt();
   change(faults);
   injected_faults_.store(faults);
 }

@@ -24,7 +24,7 @@ struct OpSpec {
   std::string_view help;
 };
 
-constexpr std::array<OpSpec, 9> kOps{{
+constexpr std::array<OpSpec, 10> kOps{{
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
     {"estop_input", R"({"pressed": bool}: press or release the simulated controller's own e-stop button)"},
     {"disconnect",
@@ -39,6 +39,9 @@ constexpr std::array<OpSpec, 9> kOps{{
      R"({"orientation_xyzw": [x, y, z, w] or "rpy_deg": [roll, pitch, yaw], "angular_velocity_rad_s": [x, y, z], )"
      R"("linear_acceleration_m_s2": [x, y, z]}, each optional: what the simulated IMU reports from now on)"},
     {"stall", R"({"ms": 1..10000}: the next read() blocks this long, like a driver hung on its bus (fault injection))"},
+    {"slow_maintenance",
+     R"({"ms": 1..60000}: the next recover() or reset_zero() waits this long first, like a controller slow to )"
+     R"(answer; abort_maintenance() (an e-stop, a shutdown) ends the wait with an error)"},
     {"command_latency",
      R"({"reset": bool, "samples": bool}: time from a client's publish (ControlCommand.sent_steady_ns) to the )"
      R"(write() that carried it: count and p50/p99/p99.9/max in µs, every sample in ns with samples=true)"},
@@ -124,8 +127,8 @@ driver::DeviceDescription SimDriver::describe() const {
 }
 
 driver::Diagnostics SimDriver::diagnostics() const {
-  const SimSnapshot snapshot = snapshot_.load();
-  const InjectedFaults injected = injected_faults_.load();
+  const SimSnapshot snapshot = snapshot_.load_non_rt();
+  const InjectedFaults injected = injected_faults_.load_non_rt();
   const bool connected = connected_.load();
   return {
       {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
@@ -147,6 +150,7 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
     if (op == "raise_fault") return raise_fault(arguments);
     if (op == "set_external_torque") return set_external_torque(arguments);
     if (op == "stall") return stall(arguments);
+    if (op == "slow_maintenance") return slow_maintenance(arguments);
     if (op == "set_imu") return set_imu(arguments);
     if (op == "command_latency") return command_latency(arguments);
     if (op == "state") return state(arguments);
@@ -235,6 +239,17 @@ Result<nlohmann::json> SimDriver::stall(const nlohmann::json& args) {
   return nlohmann::json{{"stall_ms", *ms}};
 }
 
+Result<nlohmann::json> SimDriver::slow_maintenance(const nlohmann::json& args) {
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  reader.require("ms", "an integer 1..60000 (milliseconds)");
+  const auto ms = reader.integer("ms", 1, 60'000);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("slow_maintenance", errors);
+  maintenance_wait_ns_.store(*ms * 1'000'000, std::memory_order_release);
+  return nlohmann::json{{"maintenance_wait_ms", *ms}};
+}
+
 Result<nlohmann::json> SimDriver::set_imu(const nlohmann::json& args) {
   if (!params_.imu) return make_error(ErrorCode::kRefused, "set_imu: this device has no IMU (params.imu is false)");
   std::vector<std::string> errors;
@@ -265,7 +280,7 @@ Result<nlohmann::json> SimDriver::set_imu(const nlohmann::json& args) {
   if (!errors.empty()) return invalid_arguments("set_imu", errors);
 
   const std::lock_guard lock(imu_writer_mutex_);
-  driver::ImuSample sample = imu_.load();
+  driver::ImuSample sample = imu_.load_non_rt();
   if (quaternion) {
     for (std::size_t i = 0; i < 4; ++i) sample.orientation_xyzw[i] = (*quaternion)[i] / norm;
   }
@@ -343,8 +358,8 @@ std::optional<std::size_t> SimDriver::joint_argument(JsonReader& reader, const n
 Result<nlohmann::json> SimDriver::state(const nlohmann::json& args) const {
   if (auto error = unexpected_arguments("state", args)) return *error;
 
-  const SimSnapshot snapshot = snapshot_.load();
-  const InjectedFaults injected = injected_faults_.load();
+  const SimSnapshot snapshot = snapshot_.load_non_rt();
+  const InjectedFaults injected = injected_faults_.load_non_rt();
   nlohmann::json joints = nlohmann::json::array();
   for (std::size_t i = 0; i < snapshot.joint_count; ++i) {
     const SimJointSnapshot& joint = snapshot.joints[i];

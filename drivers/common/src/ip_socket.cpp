@@ -1,8 +1,10 @@
 #include "robotd/transport/ip_socket.hpp"
 
+#include <algorithm>
 #include <arpa/inet.h>
 #include <array>
 #include <cerrno>
+#include <cstdint>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -78,7 +80,7 @@ void Socket::reset() noexcept {
   fd_ = -1;
 }
 
-Result<Socket> connect_tcp(const Endpoint& peer, std::chrono::milliseconds timeout) {
+Result<Socket> connect_tcp(const Endpoint& peer, std::chrono::milliseconds timeout, const driver::AbortFlag* abort) {
   auto address = ipv4_address(peer);
   if (!address) return address.error();
   auto opened = open_socket(SOCK_STREAM);
@@ -92,10 +94,19 @@ Result<Socket> connect_tcp(const Endpoint& peer, std::chrono::milliseconds timeo
   if (connect(sock.fd(), as_sockaddr(address.value()), sizeof(sockaddr_in)) == 0) return sock;
   if (errno != EINPROGRESS) return unreachable(errno);
   pollfd waiting{.fd = sock.fd(), .events = POLLOUT, .revents = 0};
-  const int ready = ::poll(&waiting, 1, static_cast<int>(timeout.count()));
-  if (ready == 0) {
-    return make_error(ErrorCode::kNotAvailable, "cannot connect to " + peer.to_string() + ": no answer within " +
-                                                    std::to_string(timeout.count()) + " ms");
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  int ready = 0;
+  while (ready == 0) {
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) {
+      return make_error(ErrorCode::kNotAvailable, "cannot connect to " + peer.to_string() + ": no answer within " +
+                                                      std::to_string(timeout.count()) + " ms");
+    }
+    // With an abort to watch, wait a millisecond at a time.
+    ready = ::poll(&waiting, 1, static_cast<int>(abort != nullptr ? std::min<std::int64_t>(left, 1) : left));
+    if (ready == 0 && abort != nullptr && abort->requested()) {
+      return driver::aborted_error("connecting to " + peer.to_string());
+    }
   }
   int error = 0;
   socklen_t length = sizeof(error);

@@ -75,7 +75,7 @@ ImuStatus YesenseSource::status() const {
   status.opens = opens_.load();
   status.rate_hz = rate_hz_.load();
   if (have_sample_.load()) {
-    const StampedReading stamped = latest_.load();
+    const StampedReading stamped = latest_.load_non_rt();
     status.age_ms = static_cast<double>(monotonic_now_ns() - stamped.stamp_ns) / 1e6;
     status.content = content_of(stamped.reading);
   }

@@ -24,7 +24,7 @@ std::string skipped_text(const BusParams& params, const BusCounters& counters) {
 }  // namespace
 
 driver::Diagnostics HighTorqueDriver::diagnostics() const {
-  const DriverSnapshot snapshot = snapshot_.load();
+  const DriverSnapshot snapshot = snapshot_.load_non_rt();
   driver::Diagnostics values;
   values.emplace_back("link", snapshot.link_up ? "up" : "down");
   values.emplace_back("motor_timeout_ms", std::to_string(motor_timeout_ms_.load()));

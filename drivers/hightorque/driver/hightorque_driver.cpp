@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <thread>
 #include <utility>
 
 #include "robotd/driver/monotonic_clock.hpp"
@@ -81,6 +80,11 @@ driver::DeviceDescription HighTorqueDriver::describe() const {
 // ---- Link -----------------------------------------------------------------------------------
 
 Result<void> HighTorqueDriver::connect() {
+  abort_.clear();
+  return connect_and_start();
+}
+
+Result<void> HighTorqueDriver::connect_and_start() {
   disconnect();
   if (auto opened = open_and_probe(); !opened) {
     disconnect();
@@ -129,7 +133,23 @@ void HighTorqueDriver::disconnect() noexcept {
 }
 
 Result<void> HighTorqueDriver::recover() {
-  if (!connected_.load(std::memory_order_acquire) || !link_up_) return connect();
+  abort_.clear();
+  if (!connected_.load(std::memory_order_acquire) || !link_up_) return abort_.verdict(connect_and_start(), "recover");
+  const Result<void> cleared = clear_faults();
+  if (cleared || abort_.requested()) restart_silence_checks();
+  return abort_.verdict(cleared, "recover");
+}
+
+void HighTorqueDriver::restart_silence_checks() noexcept {
+  // The loop was paused and sent nothing: after a maintenance that succeeded, or that an e-stop
+  // or a shutdown aborted, the silence checks start over, as after connect(), so that the pause
+  // is not taken for a lost link.
+  const std::int64_t resumed_ns = driver::monotonic_now_ns();
+  for (auto& motor : motors_) motor.status.last_reply_ns = resumed_ns;
+  for (auto& bus : bus_runtime_) bus.last_reply_ns = resumed_ns;
+}
+
+Result<void> HighTorqueDriver::clear_faults() {
   std::vector<std::size_t> faulted;
   for (std::size_t m = 0; m < params_.motors.size(); ++m) {
     if (motors_[m].status.fault != 0) faulted.push_back(m);
@@ -141,7 +161,7 @@ Result<void> HighTorqueDriver::recover() {
   do {
     send_to_motors(faulted, SystemRequest::Kind::kStop);
     send_to_motors(faulted, SystemRequest::Kind::kQuery);
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!abort_.sleep_for(std::chrono::milliseconds(5))) return driver::aborted_error("waiting for faults to clear");
     drain_buses();
     still.clear();
     for (const std::size_t m : faulted) {
@@ -151,13 +171,7 @@ Result<void> HighTorqueDriver::recover() {
     }
   } while (!still.empty() && std::chrono::steady_clock::now() < deadline);
   if (!still.empty()) return make_error(ErrorCode::kRefused, "motors still report a fault: " + still);
-  // The loop was paused and sent nothing: the silence checks start over, as after connect().
-  const std::int64_t resumed_ns = driver::monotonic_now_ns();
-  for (auto& motor : motors_) {
-    motor.fault_since_ns = 0;
-    motor.status.last_reply_ns = resumed_ns;
-  }
-  for (auto& bus : bus_runtime_) bus.last_reply_ns = resumed_ns;
+  for (auto& motor : motors_) motor.fault_since_ns = 0;
   return {};
 }
 
@@ -191,7 +205,9 @@ Result<void> HighTorqueDriver::await_motor_states(std::span<const std::size_t> m
       send_to_motors(silent, SystemRequest::Kind::kQuery);
       next_ask += std::chrono::milliseconds(50);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (!abort_.sleep_for(std::chrono::milliseconds(1))) {
+      return driver::aborted_error("waiting for the motors to answer " + std::string(what));
+    }
     drain_buses();
     missing.clear();
     for (const std::size_t m : motors) {

@@ -23,6 +23,7 @@
 
 #include "driver/hightorque_params.hpp"
 #include "driver/motor_bus.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/spsc_ring.hpp"
@@ -80,6 +81,7 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   void disconnect() noexcept override;
   Result<void> recover() override;
   Result<void> reset_zero(std::span<const int> joints) override;
+  void abort_maintenance() noexcept override { abort_.request(); }
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
   driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
@@ -102,6 +104,9 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   void on_reply(const Reply& reply) noexcept override;
 
   // Link (non-RT, loop paused).
+  Result<void> connect_and_start();
+  Result<void> clear_faults();
+  void restart_silence_checks() noexcept;
   void open_buses();
   Result<void> open_and_probe();
   Result<void> await_motor_states(std::span<const std::size_t> motors, std::chrono::milliseconds timeout,
@@ -110,6 +115,7 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   void send_to_motors(std::span<const std::size_t> motors, SystemRequest::Kind kind, int value = 0);
   Result<void> await_results(std::span<const std::size_t> motors, const char* what);
   Result<void> check_zeroable(std::span<const int> joints) const;
+  Result<void> zero(std::span<const int> joints);
 
   // RT helpers.
   bool motor_fault(std::int64_t now_ns, driver::FaultInfo& fault) noexcept;
@@ -157,6 +163,7 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   /// Whether a reply heard on its bus came from logical motor `motor`.
   bool from_motor(const BusReply& reply, std::size_t motor) const;
   mutable std::mutex ops_mutex_;  // one op at a time; never taken by the RT thread
+  driver::AbortFlag abort_;       // abort_maintenance(): connect, recover and reset_zero stop waiting
   driver::SeqLock<DriverSnapshot> snapshot_;
   std::atomic<bool> connected_{false};
   std::atomic<int> motor_timeout_ms_{0};  // set by configure and the set_motor_timeout op

@@ -71,7 +71,7 @@ Result<std::size_t> HighTorqueDriver::motor_argument(const json& args, const std
 }
 
 Result<nlohmann::json> HighTorqueDriver::op_state() const {
-  const DriverSnapshot snapshot = snapshot_.load();
+  const DriverSnapshot snapshot = snapshot_.load_non_rt();
   json motors = json::array();
   for (std::size_t m = 0; m < params_.motors.size(); ++m) {
     const MotorParams& params = params_.motors[m];
@@ -179,7 +179,7 @@ Result<nlohmann::json> HighTorqueDriver::op_reboot_motor(const nlohmann::json& a
   const auto chosen = motor_argument(args, "reboot_motor", kMotorUsage);
   if (!chosen) return chosen.error();
   const std::size_t motor = chosen.value();
-  if (snapshot_.load().motors[motor].owned) {
+  if (snapshot_.load_non_rt().motors[motor].owned) {
     return make_error(ErrorCode::kRefused,
                       "reboot_motor: " + params_.motors[motor].name + " is held by a session; release it first");
   }

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "driver/hightorque_driver.hpp"
@@ -41,6 +40,13 @@ Result<void> HighTorqueDriver::check_zeroable(std::span<const int> joints) const
 }
 
 Result<void> HighTorqueDriver::reset_zero(std::span<const int> joints) {
+  abort_.clear();
+  const Result<void> zeroed = zero(joints);
+  if (zeroed || abort_.requested()) restart_silence_checks();
+  return abort_.verdict(zeroed, "reset_zero");
+}
+
+Result<void> HighTorqueDriver::zero(std::span<const int> joints) {
   if (!connected_.load(std::memory_order_acquire)) {
     return make_error(ErrorCode::kNotAvailable, "reset_zero: the motors are not connected");
   }
@@ -56,7 +62,7 @@ Result<void> HighTorqueDriver::reset_zero(std::span<const int> joints) {
   const auto settled = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.zero_settle_ms);
   do {
     send_to_motors(motors, SystemRequest::Kind::kStop);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (!abort_.sleep_for(std::chrono::milliseconds(2))) return driver::aborted_error("settling before zeroing");
     drain_buses();
   } while (std::chrono::steady_clock::now() < settled);
 
@@ -95,7 +101,9 @@ Result<void> HighTorqueDriver::await_results(std::span<const std::size_t> motors
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   while (waiting > 0 && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (!abort_.sleep_for(std::chrono::milliseconds(1))) {
+      return driver::aborted_error(std::string("waiting for the answers to ") + what);
+    }
     drain_buses();
     while (const auto reply = replies_.pop()) {
       if (reply->reply.kind != Reply::Kind::kResult) continue;

@@ -18,7 +18,7 @@ std::string homed_text(const RobotFrame& reply) {
 }  // namespace
 
 driver::Diagnostics Parol6Driver::diagnostics() const {
-  const BoardSnapshot snapshot = snapshot_.load();
+  const BoardSnapshot snapshot = snapshot_.load_non_rt();
   const RobotFrame& reply = snapshot.reply;
   std::array<char, 96> frames{};
   std::snprintf(frames.data(), frames.size(), "%llu sent, %llu replies, %llu rejected, %llu bytes skipped",

@@ -61,7 +61,7 @@ nlohmann::json joint_bits(std::uint8_t byte) {
 template <class Change>
 void Parol6Ops::change_peripherals(Change change) {
   const std::lock_guard lock(driver_.peripherals_writer_mutex_);
-  Peripherals peripherals = driver_.peripherals_.load();
+  Peripherals peripherals = driver_.peripherals_.load_non_rt();
   change(peripherals);
   driver_.peripherals_.store(peripherals);
 }

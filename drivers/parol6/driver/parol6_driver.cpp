@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <thread>
 #include <utility>
 
 #include "codec/joint_units.hpp"
@@ -69,6 +68,7 @@ driver::DeviceDescription Parol6Driver::describe() const {
 
 Result<void> Parol6Driver::connect() {
   if (!configured_) return make_error(ErrorCode::kRefused, "connect: the parol6 driver is not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
   return connect_locked();
 }
@@ -115,7 +115,7 @@ Result<void> Parol6Driver::await_first_reply(std::chrono::milliseconds timeout) 
     if (!send_frame(idle)) {
       return make_error(ErrorCode::kNotAvailable, std::string(link_name_.data()) + " closed while connecting");
     }
-    std::this_thread::sleep_for(10ms);
+    if (!abort_.sleep_for(10ms)) return driver::aborted_error("waiting for the board's first reply");
     bool closed = false;
     if (drain_replies(monotonic_now_ns(), closed)) return {};
     if (closed) {
@@ -144,8 +144,9 @@ void Parol6Driver::disconnect() noexcept {
 
 Result<void> Parol6Driver::recover() {
   if (!configured_) return make_error(ErrorCode::kRefused, "recover: the parol6 driver is not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
-  if (!connected_.load() || link_lost_.load()) return connect_locked();
+  if (!connected_.load() || link_lost_.load()) return abort_.verdict(connect_locked(), "recover");
   return {};  // the board reports no faults to clear; clear_error resets its homing state
 }
 

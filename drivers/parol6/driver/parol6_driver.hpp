@@ -19,6 +19,7 @@
 #include "driver/frame_planner.hpp"
 #include "driver/parol6_params.hpp"
 #include "driver/trajectory_buffer.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/transport/serial_port.hpp"
@@ -51,6 +52,7 @@ class Parol6Driver final : public driver::Driver {
   void disconnect() noexcept override;
   Result<void> recover() override;
   Result<void> reset_zero(std::span<const int> joints) override;
+  void abort_maintenance() noexcept override { abort_.request(); }
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
   driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
@@ -77,14 +79,15 @@ class Parol6Driver final : public driver::Driver {
   bool send_frame(const HostFrame& frame) noexcept;
   void publish_snapshot() noexcept;
 
-  BoardSnapshot snapshot() const { return snapshot_.load(); }
+  BoardSnapshot snapshot() const { return snapshot_.load_non_rt(); }
 
   Parol6Params params_;
   bool configured_ = false;
   std::unique_ptr<transport::SerialPort> port_;
   std::array<char, 96> link_name_{};
-  std::mutex link_mutex_;  // connect / recover / disconnect; never taken by the RT thread
-  std::mutex ops_mutex_;   // one op at a time
+  std::mutex link_mutex_;    // connect / recover / disconnect; never taken by the RT thread
+  std::mutex ops_mutex_;     // one op at a time
+  driver::AbortFlag abort_;  // abort_maintenance(): connect and recover stop waiting
 
   // Shared with the ops.
   std::atomic<bool> connected_{false};

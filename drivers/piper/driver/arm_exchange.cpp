@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "driver/piper_driver.hpp"
+#include "robotd/driver/monotonic_clock.hpp"
 
 namespace robotd::piper {
 namespace {
@@ -52,7 +53,7 @@ Result<std::vector<CanMessage>> PiperDriver::exchange(std::span<const CanMessage
   return replies;
 }
 
-Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::uint8_t command) {
+Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::uint8_t command, bool maintenance) {
   if (!snapshot().link_up) {
     return make_error(ErrorCode::kNotAvailable,
                       "the arm is not connected (robotctl status shows why; robotctl call <device> recover)");
@@ -63,9 +64,14 @@ Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::ui
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   while (std::chrono::steady_clock::now() < deadline) {
+    if (maintenance) drain_link_blocking_free(driver::monotonic_now_ns());
     const auto message = replies_.pop();
     if (!message) {
-      std::this_thread::sleep_for(1ms);
+      if (!maintenance) {
+        std::this_thread::sleep_for(1ms);
+      } else if (!abort_.sleep_for(1ms)) {
+        return driver::aborted_error("waiting for the acknowledge of " + hex_id(request.id));
+      }
       continue;
     }
     const auto frame = decode(*message, codec_);

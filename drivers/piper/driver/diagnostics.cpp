@@ -7,7 +7,7 @@
 namespace robotd::piper {
 
 driver::Diagnostics PiperDriver::diagnostics() const {
-  const ArmSnapshot snapshot = snapshot_.load();
+  const ArmSnapshot snapshot = snapshot_.load_non_rt();
   const ArmState& arm = snapshot.arm;
   int enabled = 0;
   std::string driver_faults;

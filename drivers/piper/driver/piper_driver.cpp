@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <thread>
 
 #include "driver/piper_ops.hpp"
 #include "kinematics/piper_kinematics.hpp"
@@ -77,6 +76,7 @@ driver::DeviceDescription PiperDriver::describe() const {
 
 Result<void> PiperDriver::connect() {
   if (!configured_) return make_error(ErrorCode::kRefused, "connect: the piper driver is not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
   return connect_locked();
 }
@@ -106,6 +106,10 @@ Result<void> PiperDriver::open_and_check_link() {
     return fed.error();
   }
   if (params_.firmware == "auto") detect_firmware();
+  if (abort_.requested()) {
+    transport_->close();
+    return driver::aborted_error("reading the arm's firmware version");
+  }
   streamer_.configure(params_, codec_);
   replies_.clear();
   rate_window_start_ns_ = 0;
@@ -119,6 +123,7 @@ void PiperDriver::drain_link_blocking_free(std::int64_t now_ns) {
   CanMessage message;
   while (transport_->receive(message) == transport::CanIo::kDone) {
     ++rx_frames_;
+    if (is_reply(message.id)) (void)replies_.push(message);
     if (message.id == can_id::kFirmware && !is_firmware_request(message)) {
       firmware_text_.append(reinterpret_cast<const char*>(message.data.data()), message.length);  // NOLINT
     }
@@ -132,7 +137,7 @@ Result<void> PiperDriver::await_arm_feedback(std::chrono::milliseconds timeout) 
   while (std::chrono::steady_clock::now() < deadline) {
     drain_link_blocking_free(monotonic_now_ns());
     if (arm_.status_seen && arm_.joints_seen) return {};
-    std::this_thread::sleep_for(1ms);
+    if (!abort_.sleep_for(1ms)) return driver::aborted_error("waiting for the arm's feedback");
   }
   const std::string link = transport_->describe();
   const std::string waited = std::to_string(timeout.count()) + " ms";
@@ -158,7 +163,7 @@ void PiperDriver::detect_firmware() {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   while (std::chrono::steady_clock::now() < deadline && firmware_text_.size() < kFirmwareReplyBytes) {
     drain_link_blocking_free(monotonic_now_ns());
-    std::this_thread::sleep_for(1ms);
+    if (!abort_.sleep_for(1ms)) return;
   }
   if (const auto version = software_version(firmware_text_)) {
     codec_.mit_layout = mit_layout_for(*version);
@@ -178,9 +183,10 @@ void PiperDriver::disconnect() noexcept {
 
 Result<void> PiperDriver::recover() {
   if (!configured_) return make_error(ErrorCode::kRefused, "recover: the piper driver is not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
-  if (!connected_.load() || link_lost_.load()) return connect_locked();
-  return clear_arm_errors();
+  if (!connected_.load() || link_lost_.load()) return abort_.verdict(connect_locked(), "recover");
+  return abort_.verdict(clear_arm_errors(), "recover");
 }
 
 Result<void> PiperDriver::clear_arm_errors() {
@@ -204,7 +210,7 @@ Result<void> PiperDriver::clear_arm_errors() {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   driver::FaultInfo fault;
   while (std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(10ms);
+    if (!abort_.sleep_for(10ms)) return driver::aborted_error("waiting for the arm to clear its errors");
     drain_link_blocking_free(monotonic_now_ns());
     fault = arm_fault(arm_, estop_, params_.gripper);
     if (fault.code == 0) return {};
@@ -214,6 +220,7 @@ Result<void> PiperDriver::clear_arm_errors() {
 }
 
 Result<void> PiperDriver::reset_zero(std::span<const int> joints) {
+  abort_.clear();
   std::vector<int> targets(joints.begin(), joints.end());
   if (targets.empty()) targets = {0, 1, 2, 3, 4, 5};
   for (const int joint : targets) {
@@ -223,11 +230,13 @@ Result<void> PiperDriver::reset_zero(std::span<const int> joints) {
                                                          "the gripper op {\"set_zero\": true}");
     }
   }
+  // The loop is paused: the acknowledges are read here, not by read().
   const std::lock_guard lock(ops_mutex_);
   for (const int joint : targets) {
     auto acked = set_and_await_ack(
-        encode(JointConfig{.joint = static_cast<std::uint8_t>(joint + 1), .set_zero = true}, codec_), 0x75);
-    if (!acked) return acked.error();
+        encode(JointConfig{.joint = static_cast<std::uint8_t>(joint + 1), .set_zero = true}, codec_), 0x75,
+        /*maintenance=*/true);
+    if (!acked) return abort_.verdict(acked.error(), "reset_zero");
     if (!acked.value().zero_set) {
       return make_error(ErrorCode::kRefused, "joint " + std::to_string(joint + 1) +
                                                  ": the arm did not confirm the new zero (0x476 byte 1 = 0)");
@@ -381,6 +390,6 @@ void PiperDriver::publish_snapshot() noexcept {
   snapshot_.store(snapshot);
 }
 
-ArmSnapshot PiperDriver::snapshot() const { return snapshot_.load(); }
+ArmSnapshot PiperDriver::snapshot() const { return snapshot_.load_non_rt(); }
 
 }  // namespace robotd::piper

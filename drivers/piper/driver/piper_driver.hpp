@@ -25,6 +25,7 @@
 #include "driver/arm_state.hpp"
 #include "driver/command_streamer.hpp"
 #include "driver/piper_params.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/spsc_ring.hpp"
@@ -58,6 +59,7 @@ class PiperDriver final : public driver::Driver {
   void disconnect() noexcept override;
   Result<void> recover() override;
   Result<void> reset_zero(std::span<const int> joints) override;
+  void abort_maintenance() noexcept override { abort_.request(); }
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
   driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
@@ -74,7 +76,8 @@ class PiperDriver final : public driver::Driver {
   Result<void> await_arm_feedback(std::chrono::milliseconds timeout);
   void detect_firmware();
   Result<void> clear_arm_errors();
-  /// Receives what is waiting and applies it to arm_ (only while the RT loop does not run).
+  /// Receives what is waiting, applies it to arm_ and hands replies to the reply ring, as read()
+  /// does (only while the RT loop does not run).
   void drain_link_blocking_free(std::int64_t now_ns);
 
   // RT helpers.
@@ -90,8 +93,9 @@ class PiperDriver final : public driver::Driver {
   /// within reply_timeout_ms (replies left over from an earlier exchange are discarded first).
   Result<std::vector<CanMessage>> exchange(std::span<const CanMessage> requests, std::uint32_t reply_id,
                                            std::size_t count);
-  /// Sends a setting and waits for its 0x476 acknowledge (`command`: the ack's byte 0).
-  Result<SetAck> set_and_await_ack(const CanMessage& request, std::uint8_t command);
+  /// Sends a setting and waits for its 0x476 acknowledge (`command`: the ack's byte 0). For
+  /// `maintenance` (the loop paused) the wait reads the link itself and abort_ ends it.
+  Result<SetAck> set_and_await_ack(const CanMessage& request, std::uint8_t command, bool maintenance = false);
 
   PiperParams params_;
   bool configured_ = false;
@@ -101,8 +105,9 @@ class PiperDriver final : public driver::Driver {
   std::array<char, 96> link_name_{};  // "stand-in /tmp/piper.sock", for RT messages
 
   std::unique_ptr<transport::CanTransport> transport_;
-  std::mutex link_mutex_;  // connect / recover / disconnect; never taken by the RT thread
-  std::mutex ops_mutex_;   // one op at a time (the reply ring has one consumer)
+  std::mutex link_mutex_;    // connect / recover / disconnect; never taken by the RT thread
+  std::mutex ops_mutex_;     // one op at a time (the reply ring has one consumer)
+  driver::AbortFlag abort_;  // abort_maintenance(): connect, recover and reset_zero stop waiting
 
   std::atomic<bool> connected_{false};
   std::atomic<bool> link_lost_{false};

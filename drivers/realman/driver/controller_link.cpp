@@ -35,10 +35,10 @@ driver::FaultInfo fault_of(std::int32_t code, const std::string& text) {
 
 }  // namespace
 
-Result<void> ControllerLink::open(const LinkSettings& settings) {
+Result<void> ControllerLink::open(const LinkSettings& settings, const driver::AbortFlag* abort) {
   close();
   settings_ = settings;
-  auto tcp = transport::connect_tcp(settings.controller, settings.connect_timeout);
+  auto tcp = transport::connect_tcp(settings.controller, settings.connect_timeout, abort);
   if (!tcp) return tcp.error();
   tcp_ = std::move(tcp).value();
   if (settings.push) {
@@ -61,9 +61,11 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   tcp_out_.clear();
   link_counters_ = LinkCounters{};
   counters_.store(link_counters_);
-  feedback_.store(ArmFeedback{});
+  latest_ = ArmFeedback{};
+  feedback_.store(latest_);
   health_.store(LinkHealth{});
   target_.store(StreamTarget{});
+  target_read_ = StreamTarget{};
   restart_stream_.store(true);
   stopping_.store(false);
   feedback_sequence_ = 0;
@@ -119,14 +121,17 @@ Result<ControllerLink::Reply> ControllerLink::request(const nlohmann::json& mess
     queue_.push_back(Outgoing{frame(message), std::move(request)});
   }
   wake();
-  if (reply_future.wait_for(options.reply_timeout + kCallerSlack) != std::future_status::ready) {
+  const auto aborted = [&] { return options.abort != nullptr && options.abort->requested(); };
+  if (!driver::wait_ready(reply_future, options.reply_timeout + kCallerSlack, options.abort)) {
+    if (aborted()) return driver::aborted_error("waiting for the reply to " + command);
     return make_error(ErrorCode::kTimeout, "no reply to " + command + " from the controller");
   }
   Result<nlohmann::json> body = reply_future.get();
   if (!body) return body.error();
   Reply reply{std::move(body).value(), std::nullopt};
   if (!options.completion) return reply;
-  if (completion_future.wait_for(options.completion_timeout + kCallerSlack) != std::future_status::ready) {
+  if (!driver::wait_ready(completion_future, options.completion_timeout + kCallerSlack, options.abort)) {
+    if (aborted()) return driver::aborted_error("waiting for " + command + " to complete");
     return make_error(ErrorCode::kTimeout, command + " did not complete");
   }
   Result<TrajectoryEvent> event = completion_future.get();
@@ -380,6 +385,7 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
   out.joint_errors = sample.joint_errors;
   out.fault = arm_fault(sample.errors, std::span(sample.joint_errors.data(), settings_.dof));
   out.sequence = ++feedback_sequence_;
+  latest_ = out;
   feedback_.store(out);
   if (stopping_.load(std::memory_order_acquire) && at_rest(out, nullptr)) {
     stopping_.store(false, std::memory_order_release);
@@ -390,7 +396,11 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
 void ControllerLink::stream(Clock::time_point now) {
   next_stream_at_ += settings_.command_period;
   if (next_stream_at_ <= now) next_stream_at_ = now + settings_.command_period;  // late: skip, do not burst
-  const StreamTarget target = target_.load();
+  // Never wait for the RT thread's store: with io_priority at or above the loop's (or a loop
+  // without SCHED_FIFO) the writer may not get the CPU back while this thread waits. A store in
+  // progress means the previous target, one command period longer.
+  (void)target_.try_load(target_read_);
+  const StreamTarget target = target_read_;
   if (target.estop) {
     if (!estop_sent_) send_unawaited(plain_request("set_arm_stop"));
     estop_sent_ = true;
@@ -398,7 +408,7 @@ void ControllerLink::stream(Clock::time_point now) {
     return;
   }
   estop_sent_ = false;
-  const ArmFeedback measured = feedback_.load();
+  const ArmFeedback& measured = latest_;
   if (!target.active) {
     // The session ended or timed out while the arm was still on its way (low follow, filtering):
     // decelerate and stop on the path. Planned moves wait until it is at rest (stopping()).

@@ -7,7 +7,7 @@
 //   thread polls get_current_arm_state instead.
 // - Streaming: every command period the thread takes the RT thread's latest StreamTarget and
 //   sends one movej_canfd, each joint limited to what pass-through accepts per frame.
-// The RT thread only touches the sequence locks: publish_target() and feedback()/health().
+// The RT thread only touches the sequence locks: publish_target(), try_feedback(), try_health().
 #pragma once
 
 #include <array>
@@ -23,6 +23,7 @@
 
 #include "codec/realman_codec.hpp"
 #include "driver/request_tracker.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/result.hpp"
@@ -87,6 +88,7 @@ struct RequestOptions {
   std::chrono::milliseconds reply_timeout{1000};
   std::optional<Device> completion;  // wait for this device's current_trajectory_state too
   std::chrono::milliseconds completion_timeout{60'000};
+  const driver::AbortFlag* abort = nullptr;  // maintenance: ends the waits early
 };
 
 class ControllerLink {
@@ -97,8 +99,8 @@ class ControllerLink {
   ~ControllerLink() { close(); }
 
   /// Connects TCP, binds the push socket and starts the link thread. kNotAvailable when the
-  /// controller is not reachable.
-  Result<void> open(const LinkSettings& settings);
+  /// controller is not reachable. `abort` (maintenance) ends the connection attempt early.
+  Result<void> open(const LinkSettings& settings, const driver::AbortFlag* abort = nullptr);
   void close() noexcept;
   bool is_open() const { return io_.running(); }
 
@@ -118,12 +120,16 @@ class ControllerLink {
   /// A slow stop sent at the end of a session is still bringing the arm to rest.
   bool stopping() const noexcept { return stopping_.load(std::memory_order_acquire); }
 
-  // RT thread.
+  // RT thread: never waits for the link thread. A try_ that fails (the link thread, preempted by
+  // the RT thread, is mid-store) leaves `out` as it was: the caller keeps its previous copy.
   void publish_target(const StreamTarget& target) noexcept { target_.store(target); }
-  ArmFeedback feedback() const noexcept { return feedback_.load(); }
-  LinkHealth health() const noexcept { return health_.load(); }
+  bool try_feedback(ArmFeedback& out) const noexcept { return feedback_.try_load(out); }
+  bool try_health(LinkHealth& out) const noexcept { return health_.try_load(out); }
 
-  LinkCounters counters() const noexcept { return counters_.load(); }
+  // Other threads (they may wait for the link thread to finish a store).
+  ArmFeedback feedback() const noexcept { return feedback_.load_non_rt(); }
+  LinkHealth health() const noexcept { return health_.load_non_rt(); }
+  LinkCounters counters() const noexcept { return counters_.load_non_rt(); }
   std::string last_arm_status() const;
 
  private:
@@ -178,6 +184,8 @@ class ControllerLink {
   std::string arm_status_;
 
   // Link thread only.
+  StreamTarget target_read_;  // the newest target it could read (the RT thread may be mid-store)
+  ArmFeedback latest_;        // what it last published
   RequestTracker tracker_;
   LineSplitter splitter_;
   std::string tcp_out_;

@@ -1,7 +1,6 @@
 #include "driver/realman_driver.hpp"
 
 #include <algorithm>
-#include <thread>
 
 #include "driver/realman_ops.hpp"
 #include "robotd/driver/position_targets.hpp"
@@ -41,6 +40,7 @@ driver::DeviceDescription RealmanDriver::describe() const {
 
 Result<void> RealmanDriver::connect() {
   if (!configured_) return make_error(ErrorCode::kInvalidArgument, "the realman driver was not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
   return connect_locked();
 }
@@ -63,7 +63,7 @@ Result<void> RealmanDriver::connect_locked() {
       .pass_through = params_.pass_through,
       .io_priority = params_.io_priority,
   };
-  auto opened = link_.open(settings);
+  auto opened = link_.open(settings, &abort_);
   Result<void> ready = opened ? check_software() : opened;
   if (ready && params_.push.enabled) ready = start_push();
   if (ready) ready = await_feedback();
@@ -72,6 +72,7 @@ Result<void> RealmanDriver::connect_locked() {
     return ready;
   }
   last_sequence_ = 0;
+  rt_health_ = LinkHealth{};
   connected_.store(true, std::memory_order_release);
   return {};
 }
@@ -122,7 +123,7 @@ Result<void> RealmanDriver::await_feedback() {
     const LinkHealth health = link_.health();
     if (health.lost) return make_error(ErrorCode::kNotAvailable, health.reason.text.data());
     if (link_.feedback().sequence > 0) return {};
-    std::this_thread::sleep_for(kFeedbackPoll);
+    if (!abort_.sleep_for(kFeedbackPoll)) return driver::aborted_error("waiting for the first feedback");
   }
   const std::string waited = std::to_string(wait.count()) + " ms";
   if (params_.push.enabled) {
@@ -145,11 +146,14 @@ void RealmanDriver::disconnect() noexcept {
 }
 
 Result<void> RealmanDriver::recover() {
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
-  if (!connected_.load(std::memory_order_acquire) || link_.health().lost) return connect_locked();
+  if (!connected_.load(std::memory_order_acquire) || link_.health().lost) {
+    return abort_.verdict(connect_locked(), "recover");
+  }
   auto cleared = clear_errors();
   link_.restart_stream();
-  return cleared;
+  return abort_.verdict(cleared, "recover");
 }
 
 Result<void> RealmanDriver::clear_errors() {
@@ -164,7 +168,7 @@ Result<void> RealmanDriver::clear_errors() {
   while (Clock::now() < deadline) {
     now = link_.feedback();
     if (now.sequence > before.sequence && now.fault.code == 0) return {};
-    std::this_thread::sleep_for(kFeedbackPoll);
+    if (!abort_.sleep_for(kFeedbackPoll)) return driver::aborted_error("waiting for the errors to clear");
   }
   return make_error(ErrorCode::kRefused, std::string("errors cleared, but ") + now.fault.text.data());
 }
@@ -175,19 +179,21 @@ Result<void> RealmanDriver::reset_zero(std::span<const int> /*joints*/) {
       "RealMan joints have absolute encoders; their zero is set with RealMan's tools, not through robotd");
 }
 
-bool RealmanDriver::link_up(driver::FaultInfo& fault) const noexcept {
+bool RealmanDriver::link_up(driver::FaultInfo& fault) noexcept {
   if (!connected_.load(std::memory_order_acquire)) {
     fault = not_connected_fault_;
     return false;
   }
-  const LinkHealth health = link_.health();
-  if (health.lost) fault = health.reason;
-  return !health.lost;
+  (void)link_.try_health(rt_health_);  // the link thread mid-store: the previous health, one tick longer
+  if (rt_health_.lost) fault = rt_health_.reason;
+  return !rt_health_.lost;
 }
 
 driver::IoResult RealmanDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
   if (!link_up(fault)) return driver::IoResult::kDisconnected;
-  rt_feedback_ = link_.feedback();
+  // The link thread mid-store (the RT thread may have preempted it): no new data this tick, and
+  // write() keeps the previous feedback.
+  if (!link_.try_feedback(rt_feedback_)) return driver::IoResult::kNoNewData;
   if (rt_feedback_.sequence == last_sequence_) return driver::IoResult::kNoNewData;
   last_sequence_ = rt_feedback_.sequence;
   const std::size_t dof = params_.model.dof;
@@ -222,7 +228,9 @@ Result<nlohmann::json> RealmanDriver::call(const std::string& op, const nlohmann
 }
 
 Result<ControllerLink::Reply> RealmanDriver::request(const nlohmann::json& message) {
-  return link_.request(message, default_options());
+  RequestOptions options = default_options();
+  options.abort = &abort_;
+  return link_.request(message, options);
 }
 
 Result<ControllerLink::Reply> RealmanDriver::request(const nlohmann::json& message, const RequestOptions& options) {

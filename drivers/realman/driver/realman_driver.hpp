@@ -18,6 +18,7 @@
 #include "driver/arm_fault.hpp"
 #include "driver/controller_link.hpp"
 #include "driver/realman_params.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 
 namespace robotd::realman {
@@ -31,6 +32,7 @@ class RealmanDriver final : public driver::Driver {
   void disconnect() noexcept override;
   Result<void> recover() override;
   Result<void> reset_zero(std::span<const int> joints) override;
+  void abort_maintenance() noexcept override { abort_.request(); }
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
   driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
@@ -43,13 +45,13 @@ class RealmanDriver final : public driver::Driver {
 
   Result<void> connect_locked();
   /// RT: false, with the reason in `fault`, while not connected or the link is lost.
-  bool link_up(driver::FaultInfo& fault) const noexcept;
+  bool link_up(driver::FaultInfo& fault) noexcept;
   /// Reads the controller's model and firmware and checks the model against the config.
   Result<void> check_software();
   Result<void> start_push();
   Result<void> await_feedback();
   Result<void> clear_errors();
-  /// With the configured request timeout.
+  /// For connect and recover: the configured request timeout, and abort_ ends the wait.
   Result<ControllerLink::Reply> request(const nlohmann::json& message);
   Result<ControllerLink::Reply> request(const nlohmann::json& message, const RequestOptions& options);
   RequestOptions default_options() const;
@@ -57,8 +59,9 @@ class RealmanDriver final : public driver::Driver {
   RealmanParams params_;
   bool configured_ = false;
   ControllerLink link_;
-  std::mutex link_mutex_;  // connect / recover / disconnect; never taken by the RT thread
-  std::mutex ops_mutex_;   // one op at a time
+  std::mutex link_mutex_;    // connect / recover / disconnect; never taken by the RT thread
+  std::mutex ops_mutex_;     // one op at a time
+  driver::AbortFlag abort_;  // abort_maintenance(): connect and recover stop waiting
   std::string product_version_;
   std::string controller_version_;
 
@@ -66,6 +69,7 @@ class RealmanDriver final : public driver::Driver {
   std::atomic<bool> session_streaming_{false};  // for the ops: a session owns joints
 
   // RT thread.
+  LinkHealth rt_health_;  // the newest health read()/write() could read
   std::uint64_t last_sequence_ = 0;
   ArmFeedback rt_feedback_;  // the newest read(); write() holds unowned joints where it measured them
   driver::FaultInfo not_connected_fault_;

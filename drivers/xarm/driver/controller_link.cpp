@@ -41,13 +41,13 @@ std::chrono::nanoseconds report_period(ReportKind kind) {
 
 }  // namespace
 
-Result<void> ControllerLink::open(const LinkSettings& settings) {
+Result<void> ControllerLink::open(const LinkSettings& settings, const driver::AbortFlag* abort) {
   close();
   settings_ = settings;
-  auto command = transport::connect_tcp(settings.controller, settings.connect_timeout);
+  auto command = transport::connect_tcp(settings.controller, settings.connect_timeout, abort);
   if (!command) return command.error();
   command_ = std::move(command).value();
-  auto report = transport::connect_tcp(settings.report, settings.connect_timeout);
+  auto report = transport::connect_tcp(settings.report, settings.connect_timeout, abort);
   if (!report) {
     command_.reset();
     return make_error(report.error().code, "the command port answers but the " +
@@ -66,6 +66,7 @@ Result<void> ControllerLink::open(const LinkSettings& settings) {
   feedback_.store(latest_);
   health_.store(LinkHealth{});
   target_.store(StreamTarget{});
+  target_read_ = StreamTarget{};
   restart_requested_.store(false);
   feedback_sequence_ = 0;
   last_report_at_ = {};
@@ -101,7 +102,8 @@ void ControllerLink::close() noexcept {
   report_.reset();
 }
 
-Result<Reply> ControllerLink::request(const Request& request, std::chrono::milliseconds timeout) {
+Result<Reply> ControllerLink::request(const Request& request, std::chrono::milliseconds timeout,
+                                      const driver::AbortFlag* abort) {
   if (!is_open() || health().lost) return make_error(ErrorCode::kNotAvailable, "not connected to the control box");
   auto replied = std::make_shared<std::promise<Result<Reply>>>();
   auto reply = replied->get_future();
@@ -112,7 +114,9 @@ Result<Reply> ControllerLink::request(const Request& request, std::chrono::milli
                               }});
   }
   wake();
-  if (reply.wait_for(timeout + kCallerSlack) != std::future_status::ready) {
+  if (!driver::wait_ready(reply, timeout + kCallerSlack, abort)) {
+    if (abort != nullptr && abort->requested())
+      return driver::aborted_error("waiting for " + register_name(request.reg));
     return make_error(ErrorCode::kTimeout, "no reply to " + register_name(request.reg) + " from the control box");
   }
   return reply.get();

@@ -9,7 +9,7 @@
 // - Servo streaming (servo_phase.hpp): while the RT thread's StreamTarget is active the thread
 //   puts the arm into servo mode and sends one servo_j per servo period, each joint limited to
 //   what the arm accepts per step; when it ends, back to position mode.
-// The RT thread only touches the sequence locks: publish_target() and feedback()/health().
+// The RT thread only touches the sequence locks: publish_target(), try_feedback(), try_health().
 #pragma once
 
 #include <array>
@@ -24,6 +24,7 @@
 
 #include "codec/xarm_codec.hpp"
 #include "driver/transaction_table.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/result.hpp"
@@ -104,23 +105,29 @@ class ControllerLink {
   ~ControllerLink() { close(); }
 
   /// Connects the command and report ports and starts the link thread. kNotAvailable when the
-  /// control box is not reachable.
-  Result<void> open(const LinkSettings& settings);
+  /// control box is not reachable. `abort` (maintenance) ends the connection attempts early.
+  Result<void> open(const LinkSettings& settings, const driver::AbortFlag* abort = nullptr);
   void close() noexcept;
   bool is_open() const { return io_.running(); }
 
-  /// Sends `request` and waits for its reply. Any non-RT thread.
-  Result<Reply> request(const Request& request, std::chrono::milliseconds timeout);
+  /// Sends `request` and waits for its reply. Any non-RT thread; `abort` (maintenance) ends the
+  /// wait early (the reply, when it comes, is then dropped).
+  Result<Reply> request(const Request& request, std::chrono::milliseconds timeout,
+                        const driver::AbortFlag* abort = nullptr);
   /// Re-reads the controller's codes now, and starts servo mode afresh if a session streams
   /// (after recover() reset the arm).
   void restart();
 
-  // RT thread.
+  // RT thread: never waits for the link thread. A try_ that fails (the link thread, preempted by
+  // the RT thread, is mid-store) leaves `out` as it was: the caller keeps its previous copy.
   void publish_target(const StreamTarget& target) noexcept { target_.store(target); }
-  ArmFeedback feedback() const noexcept { return feedback_.load(); }
-  LinkHealth health() const noexcept { return health_.load(); }
+  bool try_feedback(ArmFeedback& out) const noexcept { return feedback_.try_load(out); }
+  bool try_health(LinkHealth& out) const noexcept { return health_.try_load(out); }
 
-  LinkCounters counters() const noexcept { return counters_.load(); }
+  // Other threads (they may wait for the link thread to finish a store).
+  ArmFeedback feedback() const noexcept { return feedback_.load_non_rt(); }
+  LinkHealth health() const noexcept { return health_.load_non_rt(); }
+  LinkCounters counters() const noexcept { return counters_.load_non_rt(); }
 
  private:
   struct Outgoing {
@@ -177,6 +184,7 @@ class ControllerLink {
   driver::SeqLock<LinkCounters> counters_;
 
   // Link thread only.
+  StreamTarget target_read_;  // the newest target it could read (the RT thread may be mid-store)
   TransactionTable transactions_;
   FrameSplitter frames_;
   ReportSplitter reports_;

@@ -43,7 +43,11 @@ std::string_view servo_phase_name(ServoPhase phase) {
 }
 
 void ControllerLink::drive_servo(Clock::time_point now) {
-  const StreamTarget target = target_.load();
+  // Never wait for the RT thread's store: with io_priority at or above the loop's (or a loop
+  // without SCHED_FIFO) the writer may not get the CPU back while this thread waits. A store in
+  // progress means the previous target, one servo period longer.
+  (void)target_.try_load(target_read_);
+  const StreamTarget target = target_read_;
   follow_estop(target, now);
   if (target.estop) return;
   switch (phase_) {

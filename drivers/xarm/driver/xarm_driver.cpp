@@ -1,7 +1,6 @@
 #include "driver/xarm_driver.hpp"
 
 #include <algorithm>
-#include <thread>
 
 #include "driver/xarm_fault.hpp"
 #include "driver/xarm_ops.hpp"
@@ -42,6 +41,7 @@ driver::DeviceDescription XarmDriver::describe() const {
 
 Result<void> XarmDriver::connect() {
   if (!configured_) return make_error(ErrorCode::kInvalidArgument, "the xarm driver was not configured");
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
   return connect_locked();
 }
@@ -61,7 +61,7 @@ Result<void> XarmDriver::connect_locked() {
       .enable_for_servo = params_.enable != EnablePolicy::kManual,
       .io_priority = params_.io_priority,
   };
-  Result<void> ready = link_.open(settings);
+  Result<void> ready = link_.open(settings, &abort_);
   if (ready) ready = await_report();
   if (ready) ready = check_version();
   if (ready && params_.enable == EnablePolicy::kOnConnect) {
@@ -77,12 +77,13 @@ Result<void> XarmDriver::connect_locked() {
     return ready;
   }
   last_sequence_ = 0;
+  rt_health_ = LinkHealth{};
   connected_.store(true, std::memory_order_release);
   return {};
 }
 
 Result<void> XarmDriver::check_version() {
-  auto reply = request(plain_request(Register::kGetVersion));
+  auto reply = request(plain_request(Register::kGetVersion), &abort_);
   if (!reply) return reply.error();
   auto version = parse_version(reply.value().data);
   if (!version) return version.error();
@@ -109,7 +110,7 @@ Result<void> XarmDriver::await_report() {
     const LinkHealth health = link_.health();
     if (health.lost) return make_error(ErrorCode::kNotAvailable, health.reason.text.data());
     if (link_.feedback().sequence > 0) return {};
-    std::this_thread::sleep_for(kFeedbackPoll);
+    if (!abort_.sleep_for(kFeedbackPoll)) return driver::aborted_error("waiting for the first report");
   }
   return make_error(ErrorCode::kNotAvailable, "the control box at " + params_.controller.to_string() + " sent no " +
                                                   std::string(report_kind_name(params_.report_kind)) +
@@ -120,7 +121,7 @@ Result<void> XarmDriver::await_report() {
 
 Result<void> XarmDriver::run_steps(std::initializer_list<Request> requests) {
   for (const Request& step : requests) {
-    auto reply = request(step);
+    auto reply = request(step, &abort_);
     if (!reply) return reply.error();
     if (reply.value().status.invalid) {
       return make_error(ErrorCode::kRefused, "the control box refused " + register_name(step.reg) + " as invalid");
@@ -136,8 +137,15 @@ void XarmDriver::disconnect() noexcept {
 }
 
 Result<void> XarmDriver::recover() {
+  abort_.clear();
   const std::lock_guard lock(link_mutex_);
-  if (!connected_.load(std::memory_order_acquire) || link_.health().lost) return connect_locked();
+  if (!connected_.load(std::memory_order_acquire) || link_.health().lost) {
+    return abort_.verdict(connect_locked(), "recover");
+  }
+  return abort_.verdict(clear_errors_locked(), "recover");
+}
+
+Result<void> XarmDriver::clear_errors_locked() {
   const ArmFeedback before = link_.feedback();
   Result<void> cleared = run_steps({plain_request(Register::kCleanErr), plain_request(Register::kCleanWar)});
   if (cleared && params_.enable == EnablePolicy::kOnConnect) cleared = run_steps({motion_enable_request(8, true)});
@@ -149,7 +157,7 @@ Result<void> XarmDriver::recover() {
   while (Clock::now() < deadline) {
     now = link_.feedback();
     if (now.sequence > before.sequence + 1 && now.fault.code == 0 && now.error_code == 0) return {};
-    std::this_thread::sleep_for(kFeedbackPoll);
+    if (!abort_.sleep_for(kFeedbackPoll)) return driver::aborted_error("waiting for the errors to clear");
   }
   if (is_estop_error(now.error_code)) {
     return make_error(ErrorCode::kRefused, "errors cleared, but " + controller_error_text(now.error_code) +
@@ -165,19 +173,21 @@ Result<void> XarmDriver::reset_zero(std::span<const int> /*joints*/) {
                     "xArm joints have absolute encoders; their zero is set with UFACTORY's tools, not through robotd");
 }
 
-bool XarmDriver::link_up(driver::FaultInfo& fault) const noexcept {
+bool XarmDriver::link_up(driver::FaultInfo& fault) noexcept {
   if (!connected_.load(std::memory_order_acquire)) {
     fault = not_connected_fault_;
     return false;
   }
-  const LinkHealth health = link_.health();
-  if (health.lost) fault = health.reason;
-  return !health.lost;
+  (void)link_.try_health(rt_health_);  // the link thread mid-store: the previous health, one tick longer
+  if (rt_health_.lost) fault = rt_health_.reason;
+  return !rt_health_.lost;
 }
 
 driver::IoResult XarmDriver::read(driver::Feedback& out, driver::FaultInfo& fault) noexcept {
   if (!link_up(fault)) return driver::IoResult::kDisconnected;
-  rt_feedback_ = link_.feedback();
+  // The link thread mid-store (the RT thread may have preempted it): no new data this tick, and
+  // write() keeps the previous feedback.
+  if (!link_.try_feedback(rt_feedback_)) return driver::IoResult::kNoNewData;
   if (rt_feedback_.sequence == last_sequence_) return driver::IoResult::kNoNewData;
   last_sequence_ = rt_feedback_.sequence;
   const std::size_t dof = params_.model.dof;
@@ -212,8 +222,8 @@ Result<nlohmann::json> XarmDriver::call(const std::string& op, const nlohmann::j
   return XarmOps(*this).call(op, args);
 }
 
-Result<Reply> XarmDriver::request(const Request& request) {
-  return link_.request(request, std::chrono::milliseconds(params_.request_timeout_ms));
+Result<Reply> XarmDriver::request(const Request& request, const driver::AbortFlag* abort) {
+  return link_.request(request, std::chrono::milliseconds(params_.request_timeout_ms), abort);
 }
 
 }  // namespace robotd::xarm

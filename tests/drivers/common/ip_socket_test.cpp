@@ -2,11 +2,15 @@
 #include "robotd/transport/ip_socket.hpp"
 
 #include <array>
+#include <chrono>
 #include <netinet/in.h>
 #include <string>
 #include <sys/socket.h>
+#include <thread>
 
 #include <gtest/gtest.h>
+
+#include "unanswered_port.hpp"
 
 namespace robotd::transport {
 namespace {
@@ -55,6 +59,29 @@ TEST(IpSocket, ConnectionRefusedIsNotAvailableAndNamesThePeer) {
   ASSERT_FALSE(client);
   EXPECT_EQ(client.error().code, ErrorCode::kNotAvailable);
   EXPECT_NE(client.error().message.find(closed_port.to_string()), std::string::npos) << client.error().message;
+}
+
+TEST(IpSocket, AnAbortEndsTheWaitForAPeerThatDoesNotAnswer) {
+  const testing::UnansweredPort unanswered;
+  const Endpoint peer{"127.0.0.1", unanswered.port()};
+  const auto timed_out = connect_tcp(peer, 100ms);
+  ASSERT_FALSE(timed_out);
+  EXPECT_NE(timed_out.error().message.find("no answer within 100 ms"), std::string::npos) << timed_out.error().message;
+
+  driver::AbortFlag abort;
+  std::thread aborter([&] {
+    std::this_thread::sleep_for(100ms);
+    abort.request();
+  });
+  const auto started = std::chrono::steady_clock::now();
+  const auto aborted = connect_tcp(peer, 5s, &abort);
+  const auto waited = std::chrono::steady_clock::now() - started;
+  aborter.join();
+  ASSERT_FALSE(aborted);
+  EXPECT_EQ(aborted.error().code, ErrorCode::kRefused);
+  EXPECT_EQ(aborted.error().message,
+            "aborted: an e-stop or shutdown pre-empted connecting to 127.0.0.1:" + std::to_string(unanswered.port()));
+  EXPECT_LT(waited, 1s) << "the 5 s connection attempt ran on after the abort";
 }
 
 TEST(IpSocket, AnAddressThatIsNotIpv4IsRefusedWithTheExpectedForm) {

@@ -14,6 +14,7 @@
 #include "driver_loop.hpp"
 #include "hightorque_sim_process.hpp"
 #include "imu_sim_process.hpp"
+#include "maintenance_abort.hpp"
 
 namespace robotd::hightorque {
 namespace {
@@ -287,6 +288,68 @@ TEST_P(HighTorqueDriverTest, OpsReachTheMotors) {
   const auto bad = driver_.call("motor_info", {{"motor", "nobody"}});
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().message.find("nobody"), std::string::npos) << bad.error().message;
+}
+
+// An e-stop or a shutdown does not wait for maintenance: abort_maintenance() ends a recover() or
+// reset_zero() that waits for the motors, and the next recover() works.
+TEST_P(HighTorqueDriverTest, AnAbortEndsARecoverOrResetZeroWaitingForTheMotorsAndTheNextRecoverWorks) {
+  constexpr auto kSlow = 5000ms;  // zero_settle_ms, reply_timeout_ms and connect_timeout_ms
+  nlohmann::json slow = params();
+  slow["zero_settle_ms"] = kSlow.count();
+  slow["reply_timeout_ms"] = kSlow.count();
+  slow["connect_timeout_ms"] = kSlow.count();
+  slow["motor_timeout_ms"] = 1000;  // a loop stalled on a busy machine does not trip the motors' watchdog
+  ASSERT_NO_FATAL_FAILURE(bring_up(slow));
+  const auto abort_after_200ms = [&](auto maintenance) {
+    return loop_->paused([&] { return testing::abort_during(driver_, maintenance, 200ms); });
+  };
+  const auto expect_aborted = [&](const testing::AbortedMaintenance& aborted, const std::string& message,
+                                  const std::string& figure) {
+    ASSERT_FALSE(aborted.returned_before_abort) << figure;
+    ASSERT_FALSE(aborted.result) << figure;
+    EXPECT_EQ(aborted.result.error().code, ErrorCode::kRefused);
+    EXPECT_EQ(aborted.result.error().message, message);
+    EXPECT_LT(aborted.abort_to_return, kSlow / 5) << figure;
+    testing::print_abort_figure(figure, aborted, kSlow);
+  };
+  const std::string transport = GetParam() == HighTorqueSimProcess::Link::Kind::kBoard ? "board" : "CAN-FD";
+
+  // reset_zero first holds the motors at zero torque for zero_settle_ms; aborted there, no zero is set.
+  const double zero_before = sim_motor(0, 2)["zero_offset_rad"].get<double>();
+  expect_aborted(abort_after_200ms([&] { return driver_.reset_zero({}); }),
+                 "aborted: an e-stop or shutdown pre-empted reset_zero (settling before zeroing)",
+                 "hightorque reset_zero (" + transport + "), settling");
+  EXPECT_EQ(sim_motor(0, 2)["zero_offset_rad"].get<double>(), zero_before);
+  // The loop takes over again (the pause is not counted as silence: on the board, where STOP gets
+  // no answer, it would be a lost link), and sees the next fault.
+
+  // A fault that stays: recover stops and queries the motor until reply_timeout_ms.
+  ASSERT_TRUE(sim_ok({{"op", "set_fault"}, {"bus", 0}, {"motor", 3}, {"code", 0x14}}));
+  ASSERT_TRUE(loop_->wait_for(
+      [](DriverLoop& l) {
+        return l.last_write() == IoResult::kFault && l.fault_text().find("motor a3") != std::string::npos &&
+               l.fault_text().find("(0x14)") != std::string::npos;
+      },
+      2s))
+      << loop_->fault_text();
+  expect_aborted(abort_after_200ms([&] { return driver_.recover(); }),
+                 "aborted: an e-stop or shutdown pre-empted recover (waiting for faults to clear)",
+                 "hightorque recover (" + transport + "), a fault that stays");
+  ASSERT_TRUE(sim_ok({{"op", "clear_fault"}, {"bus", 0}, {"motor", 3}}));
+
+  // A silent bus is a lost link: recover reconnects and waits for every motor to answer.
+  ASSERT_TRUE(sim_ok({{"op", "silence"}, {"bus", 1}, {"for_ms", 30000}}));
+  ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }, 2s));
+  expect_aborted(abort_after_200ms([&] { return driver_.recover(); }),
+                 "aborted: an e-stop or shutdown pre-empted recover (waiting for the motors to answer after the "
+                 "link opened)",
+                 "hightorque recover (" + transport + "), a silent bus");
+
+  ASSERT_TRUE(sim_ok({{"op", "silence"}, {"bus", 1}, {"for_ms", 0}}));
+  driver_.abort_maintenance();  // before it starts: not that recover's
+  const auto recovered = loop_->paused([&] { return driver_.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }, 2s));
 }
 
 INSTANTIATE_TEST_SUITE_P(Transports, HighTorqueDriverTest,

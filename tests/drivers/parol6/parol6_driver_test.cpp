@@ -14,6 +14,7 @@
 #include "codec/joint_units.hpp"
 #include "driver_loop.hpp"
 #include "kinematics/parol6_kinematics.hpp"
+#include "maintenance_abort.hpp"
 #include "parol6_sim_process.hpp"
 #include "robotd/driver/json_reader.hpp"
 
@@ -275,6 +276,35 @@ TEST_F(Parol6DriverTest, SilentBoardIsALostLinkAndRecoverReconnects) {
   std::this_thread::sleep_for(1600ms);
   const auto back = loop.paused([&] { return driver_.recover(); });
   ASSERT_TRUE(back) << back.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+}
+
+TEST_F(Parol6DriverTest, AnAbortEndsARecoverWaitingForASilentBoardAndTheNextRecoverWorks) {
+  constexpr auto kConnectTimeout = 5000ms;
+  Parol6Driver driver;
+  nlohmann::json params = driver_params(sim_.pty_path());
+  params["connect_timeout_ms"] = kConnectTimeout.count();
+  ASSERT_TRUE(driver.configure(params));
+  ASSERT_TRUE(driver.connect());
+  DriverLoop loop(driver, kJoints);
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 20000}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  const auto recovering = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.recover(); }, 200ms);
+  });
+  ASSERT_FALSE(recovering.returned_before_abort);
+  ASSERT_FALSE(recovering.result);
+  EXPECT_EQ(recovering.result.error().code, ErrorCode::kRefused);
+  EXPECT_EQ(recovering.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (waiting for the board's first reply)");
+  EXPECT_LT(recovering.abort_to_return, kConnectTimeout / 5);
+  testing::print_abort_figure("parol6 recover, waiting for a silent board", recovering, kConnectTimeout);
+
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 0}})["ok"].get<bool>());
+  driver.abort_maintenance();  // before it starts: not that recover's
+  const auto recovered = loop.paused([&] { return driver.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
 }
 

@@ -13,6 +13,7 @@
 #include "driver/piper_ops.hpp"
 #include "driver_loop.hpp"
 #include "kinematics/piper_kinematics.hpp"
+#include "maintenance_abort.hpp"
 #include "piper_sim_process.hpp"
 
 namespace robotd::piper {
@@ -214,6 +215,56 @@ TEST_F(PiperDriverTest, SilentArmIsALostLinkAndRecoverWaitsForItsReturn) {
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() != IoResult::kDisconnected; }));
 }
 
+TEST_F(PiperDriverTest, AnAbortEndsARecoverOrResetZeroWaitingForTheArmAndTheNextOnesWork) {
+  constexpr auto kConnectTimeout = 5000ms;
+  constexpr auto kReplyTimeout = 3000ms;
+  PiperDriver driver;
+  ASSERT_TRUE(driver.configure(driver_params(sim_.bus_path(), {{"connect_timeout_ms", kConnectTimeout.count()},
+                                                               {"reply_timeout_ms", kReplyTimeout.count()}})));
+  ASSERT_TRUE(driver.connect());
+  DriverLoop loop(driver, kDeviceJoints);
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+
+  // No acknowledge: reset_zero waits reply_timeout_ms for each joint's.
+  ASSERT_TRUE(sim_.control({{"op", "drop_replies"}, {"enabled", true}})["ok"].get<bool>());
+  const auto zeroing = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.reset_zero(std::array{4}); }, 200ms);
+  });
+  ASSERT_FALSE(zeroing.returned_before_abort);
+  ASSERT_FALSE(zeroing.result);
+  EXPECT_EQ(zeroing.result.error().code, ErrorCode::kRefused);
+  EXPECT_EQ(zeroing.result.error().message.rfind(
+                "aborted: an e-stop or shutdown pre-empted reset_zero (waiting for the acknowledge of 0x", 0),
+            0U)
+      << zeroing.result.error().message;
+  EXPECT_LT(zeroing.abort_to_return, kReplyTimeout / 5);
+  testing::print_abort_figure("piper reset_zero, waiting for an acknowledge", zeroing, kReplyTimeout);
+  ASSERT_TRUE(sim_.control({{"op", "drop_replies"}, {"enabled", false}})["ok"].get<bool>());
+  driver.abort_maintenance();  // before it starts: not that reset_zero's
+  const auto zeroed = loop.paused([&] { return driver.reset_zero(std::array{4}); });
+  ASSERT_TRUE(zeroed) << zeroed.error().message;
+
+  // A silent arm: the link is lost, and recover reconnects and waits for its feedback.
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 20000}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  const auto recovering = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.recover(); }, 200ms);
+  });
+  ASSERT_FALSE(recovering.returned_before_abort);
+  ASSERT_FALSE(recovering.result);
+  EXPECT_EQ(recovering.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (waiting for the arm's feedback)");
+  EXPECT_LT(recovering.abort_to_return, kConnectTimeout / 5);
+  testing::print_abort_figure("piper recover, waiting for a silent arm", recovering, kConnectTimeout);
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 0}})["ok"].get<bool>());
+  driver.abort_maintenance();
+  const auto recovered = loop.paused([&] { return driver.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
+}
+
 TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kDeviceJoints);
@@ -298,7 +349,9 @@ TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
   const auto gripper = driver_.call("gripper_params", nullptr);
   ASSERT_TRUE(gripper);
   EXPECT_EQ(gripper.value()["max_range_mm"], 100);
-  ASSERT_TRUE(driver_.reset_zero(std::array{4}));
+  // reset_zero is maintenance: robotd pauses the loop and the driver reads the acknowledge itself.
+  const auto zeroed = loop.paused([&] { return driver_.reset_zero(std::array{4}); });
+  ASSERT_TRUE(zeroed) << zeroed.error().message;
 }
 
 TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {

@@ -14,8 +14,10 @@
 
 #include "driver/realman_params.hpp"
 #include "driver_loop.hpp"
+#include "maintenance_abort.hpp"
 #include "realman_sim_process.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "unanswered_port.hpp"
 
 namespace robotd::realman {
 namespace {
@@ -401,6 +403,70 @@ TEST_F(RealmanDriverTest, GarbageIsCountedAndDroppedRepliesTimeOutWithoutLosingT
   const auto answered = driver_.call("get_joint_en_state", nlohmann::json::object());
   EXPECT_TRUE(answered) << answered.error().message;
   EXPECT_EQ(loop.last_read() == IoResult::kDisconnected, false);
+}
+
+TEST(RealmanAbort, AnAbortEndsARecoverThatWaitsForAControllerThatDoesNotAnswer) {
+  const testing::UnansweredPort unanswered;
+  constexpr auto kConnectTimeout = 5000ms;
+  RealmanDriver driver;
+  ASSERT_TRUE(driver.configure(driver_params(unanswered.port(), {{"connect_timeout_ms", kConnectTimeout.count()}})));
+  const auto aborted = testing::abort_during(
+      driver, [&] { return driver.recover(); }, 200ms);
+  ASSERT_FALSE(aborted.returned_before_abort);
+  ASSERT_FALSE(aborted.result);
+  EXPECT_EQ(aborted.result.error().code, ErrorCode::kRefused);
+  EXPECT_EQ(aborted.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (connecting to 127.0.0.1:" +
+                std::to_string(unanswered.port()) + ")");
+  EXPECT_LT(aborted.abort_to_return, kConnectTimeout / 5);
+  testing::print_abort_figure("realman recover, connecting to a controller that does not answer", aborted,
+                              kConnectTimeout);
+}
+
+TEST_F(RealmanDriverTest, AnAbortEndsARecoverWaitingForTheControllerAndTheNextRecoverWorks) {
+  constexpr auto kConnectTimeout = 5000ms;
+  constexpr auto kRequestTimeout = 3000ms;
+  RealmanDriver driver;
+  ASSERT_TRUE(driver.configure(driver_params(sim_.port(), {{"connect_timeout_ms", kConnectTimeout.count()},
+                                                           {"request_timeout_ms", kRequestTimeout.count()}})));
+  ASSERT_TRUE(driver.connect());
+  DriverLoop loop(driver, kDof);
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().joint_count == kDof; }));
+
+  // Every reply dropped: recover waits for its clear_system_err (request_timeout_ms + 1 s).
+  ASSERT_TRUE(sim_.control({{"op", "drop_replies"}, {"count", 100000}})["ok"].get<bool>());
+  const auto unanswered = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.recover(); }, 200ms);
+  });
+  ASSERT_FALSE(unanswered.returned_before_abort);
+  ASSERT_FALSE(unanswered.result);
+  EXPECT_EQ(unanswered.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (waiting for the reply to clear_system_err)");
+  EXPECT_LT(unanswered.abort_to_return, kRequestTimeout / 5);
+  testing::print_abort_figure("realman recover, waiting for a reply", unanswered, kRequestTimeout + 1000ms);
+  ASSERT_TRUE(sim_.control({{"op", "drop_replies"}, {"count", 0}})["ok"].get<bool>());
+
+  // No push: the link is lost, and recover reconnects and waits for the first push.
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"on", true}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  const auto silent = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.recover(); }, 200ms);
+  });
+  ASSERT_FALSE(silent.returned_before_abort);
+  ASSERT_FALSE(silent.result);
+  EXPECT_EQ(silent.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (waiting for the first feedback)");
+  EXPECT_LT(silent.abort_to_return, kConnectTimeout / 5);
+  testing::print_abort_figure("realman recover, waiting for the first push", silent, kConnectTimeout);
+
+  // A request that came before a recover started is not that recover's.
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"on", false}})["ok"].get<bool>());
+  driver.abort_maintenance();
+  const auto recovered = loop.paused([&] { return driver.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
 }
 
 TEST_F(RealmanDriverTest, WithoutThePushTheDriverPollsTheArmState) {

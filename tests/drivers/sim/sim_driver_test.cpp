@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "maintenance_abort.hpp"
+
 namespace robotd::sim {
 namespace {
 
@@ -104,9 +106,9 @@ TEST_F(SimDriverTest, DescribeReportsJointsLimitsCapabilitiesAndOps) {
     op_names += op.name + " ";
     EXPECT_FALSE(op.help.empty()) << op.name;
   }
-  EXPECT_EQ(
-      op_names,
-      "stop_feedback estop_input disconnect raise_fault set_external_torque set_imu stall command_latency state ");
+  EXPECT_EQ(op_names,
+            "stop_feedback estop_input disconnect raise_fault set_external_torque set_imu stall slow_maintenance "
+            "command_latency state ");
 }
 
 TEST_F(SimDriverTest, ConfigureRejectsInvalidParamsNamingTheKey) {
@@ -293,6 +295,42 @@ TEST_F(SimDriverTest, RecoverDoesNotResumeTheCommandFromBeforeTheFault) {
   EXPECT_EQ(diagnostic("modes"), "none:6");
 }
 
+TEST_F(SimDriverTest, AbortMaintenanceEndsASlowRecoverOrResetZeroAndTheNextOneWorks) {
+  start();
+  constexpr auto kSlow = std::chrono::milliseconds(5000);
+  call("slow_maintenance", {{"ms", kSlow.count()}});
+  const auto recovering = testing::abort_during(
+      driver_, [this] { return driver_.recover(); }, std::chrono::milliseconds(100));
+  ASSERT_FALSE(recovering.returned_before_abort);
+  ASSERT_FALSE(recovering.result.ok());
+  EXPECT_EQ(recovering.result.error().code, ErrorCode::kRefused);
+  EXPECT_EQ(recovering.result.error().message.rfind("aborted: an e-stop or shutdown pre-empted recover", 0), 0u)
+      << recovering.result.error().message;
+  EXPECT_LT(recovering.abort_to_return, kSlow / 5);
+  testing::print_abort_figure("sim recover (slow_maintenance 5000 ms)", recovering, kSlow);
+
+  call("slow_maintenance", {{"ms", kSlow.count()}});
+  const auto zeroing = testing::abort_during(
+      driver_, [this] { return driver_.reset_zero({}); }, std::chrono::milliseconds(100));
+  ASSERT_FALSE(zeroing.returned_before_abort);
+  ASSERT_FALSE(zeroing.result.ok());
+  EXPECT_EQ(zeroing.result.error().message.rfind("aborted: an e-stop or shutdown pre-empted reset_zero", 0), 0u)
+      << zeroing.result.error().message;
+  EXPECT_LT(zeroing.abort_to_return, kSlow / 5);
+  testing::print_abort_figure("sim reset_zero (slow_maintenance 5000 ms)", zeroing, kSlow);
+
+  // A request that came before a recover() started is not that recover's: it waits and succeeds.
+  call("slow_maintenance", {{"ms", 200}});
+  driver_.abort_maintenance();
+  const auto started = std::chrono::steady_clock::now();
+  const Result<void> recovered = driver_.recover();
+  ASSERT_TRUE(recovered.ok()) << recovered.error().message;
+  EXPECT_GE(std::chrono::steady_clock::now() - started, std::chrono::milliseconds(200));
+  EXPECT_EQ(read(), IoResult::kOk);
+  driver_.abort_maintenance();
+  EXPECT_TRUE(driver_.reset_zero({}).ok());
+}
+
 TEST_F(SimDriverTest, DisconnectDisablesTheMotors) {
   start();
   EXPECT_EQ(diagnostic("motors"), "enabled");
@@ -447,7 +485,7 @@ TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   EXPECT_EQ(result.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(result.error().message,
             R"(unknown op "levitate" (the sim driver has: stop_feedback, estop_input, disconnect, raise_fault, )"
-            R"(set_external_torque, set_imu, stall, command_latency, state))");
+            R"(set_external_torque, set_imu, stall, slow_maintenance, command_latency, state))");
 }
 
 TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {
@@ -470,6 +508,7 @@ TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {
       {"state", R"({"verbose": true})", R"(state: args.verbose: unknown key (this op takes no arguments))"},
       {"disconnect", "[]", "disconnect: args: expected an object, got []"},
       {"disconnect", R"({"for_ms": -1})", "disconnect: args.for_ms: expected an integer in 0..600000, got -1"},
+      {"slow_maintenance", R"({"ms": 0})", "slow_maintenance: args.ms: expected an integer in 1..60000, got 0"},
   };
   for (const auto& test_case : cases) {
     const Result<json> result = driver_.call(test_case.op, json::parse(test_case.args));

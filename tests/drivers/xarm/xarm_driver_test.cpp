@@ -14,7 +14,9 @@
 
 #include "driver/xarm_params.hpp"
 #include "driver_loop.hpp"
+#include "maintenance_abort.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "unanswered_port.hpp"
 #include "xarm_sim_process.hpp"
 
 namespace robotd::xarm {
@@ -550,6 +552,73 @@ TEST_F(XarmDriverTest, ASilentReportIsALostLinkThatSaysWhereItWasExpected) {
   ASSERT_TRUE(sim_.control({{"op", "silence"}, {"on", false}})["ok"].get<bool>());
   const auto recovered = loop.paused([&] { return driver_.recover(); });
   EXPECT_TRUE(recovered) << recovered.error().message;
+}
+
+TEST(XarmAbort, AnAbortEndsARecoverThatWaitsForAControlBoxThatDoesNotAnswer) {
+  const testing::UnansweredPort unanswered;
+  constexpr auto kConnectTimeout = 5000ms;
+  XarmDriver driver;
+  ASSERT_TRUE(driver.configure({{"model", "xarm6"},
+                                {"host", "127.0.0.1"},
+                                {"port", unanswered.port()},
+                                {"connect_timeout_ms", kConnectTimeout.count()}}));
+  const auto aborted = testing::abort_during(
+      driver, [&] { return driver.recover(); }, 200ms);
+  ASSERT_FALSE(aborted.returned_before_abort);
+  ASSERT_FALSE(aborted.result);
+  EXPECT_EQ(aborted.result.error().code, ErrorCode::kRefused);
+  EXPECT_EQ(aborted.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (connecting to 127.0.0.1:" +
+                std::to_string(unanswered.port()) + ")");
+  EXPECT_LT(aborted.abort_to_return, kConnectTimeout / 5);
+  testing::print_abort_figure("xarm recover, connecting to a control box that does not answer", aborted,
+                              kConnectTimeout);
+}
+
+TEST_F(XarmDriverTest, AnAbortEndsARecoverWaitingForReportsOrRepliesAndTheNextRecoverWorks) {
+  constexpr auto kConnectTimeout = 5000ms;
+  constexpr auto kRequestTimeout = 3000ms;
+  XarmDriver driver;
+  ASSERT_TRUE(driver.configure(driver_params(
+      sim_, {{"connect_timeout_ms", kConnectTimeout.count()}, {"request_timeout_ms", kRequestTimeout.count()}})));
+  ASSERT_TRUE(driver.connect());
+  DriverLoop loop(driver, kDof);
+  ASSERT_TRUE(loop.wait_for(has_feedback));
+
+  // Every reply dropped: recover waits for its clean_err (request_timeout_ms + 1 s).
+  ASSERT_TRUE(sim_.control({{"op", "drop_replies"}, {"count", 100000}})["ok"].get<bool>());
+  const auto unanswered = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.recover(); }, 200ms);
+  });
+  ASSERT_FALSE(unanswered.returned_before_abort);
+  ASSERT_FALSE(unanswered.result);
+  EXPECT_EQ(unanswered.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (waiting for clean_err)");
+  EXPECT_LT(unanswered.abort_to_return, kRequestTimeout / 5);
+  testing::print_abort_figure("xarm recover, waiting for a reply", unanswered, kRequestTimeout + 1000ms);
+  ASSERT_TRUE(sim_.control({{"op", "drop_replies"}, {"count", 0}})["ok"].get<bool>());
+
+  // No reports: the link is lost, and recover reconnects and waits for the first report.
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"on", true}})["ok"].get<bool>());
+  ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
+  const auto silent = loop.paused([&] {
+    return testing::abort_during(
+        driver, [&] { return driver.recover(); }, 200ms);
+  });
+  ASSERT_FALSE(silent.returned_before_abort);
+  ASSERT_FALSE(silent.result);
+  EXPECT_EQ(silent.result.error().message,
+            "aborted: an e-stop or shutdown pre-empted recover (waiting for the first report)");
+  EXPECT_LT(silent.abort_to_return, kConnectTimeout / 5);
+  testing::print_abort_figure("xarm recover, waiting for the first report", silent, kConnectTimeout);
+
+  // A request that came before a recover started is not that recover's.
+  ASSERT_TRUE(sim_.control({{"op", "silence"}, {"on", false}})["ok"].get<bool>());
+  driver.abort_maintenance();
+  const auto recovered = loop.paused([&] { return driver.recover(); });
+  ASSERT_TRUE(recovered) << recovered.error().message;
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
 }
 
 TEST_F(XarmDriverTest, StrayFramesAreCountedDroppedRepliesTimeOutAndBrokenFramingReconnects) {

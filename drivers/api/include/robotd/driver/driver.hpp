@@ -7,6 +7,7 @@
 //     lock a mutex another thread holds, log, or block beyond a short bounded time.
 //   call, diagnostics — called from non-RT threads while the RT loop runs; the driver makes
 //     them safe against read/write (atomics, lock-free queues).
+//   abort_maintenance — any thread, including the RT loop, at any time.
 // Errors cross this boundary as values; no exception may escape a driver method.
 #pragma once
 

@@ -2,6 +2,13 @@
 // readers copy it without blocking the writer. The value is stored as relaxed atomic words
 // (Boehm, "Can seqlocks get along with programming language memory models?"), so a read that
 // races a write is well defined and simply retried.
+//
+// A reader that may preempt the writer must never wait for it: if robotd's SCHED_FIFO loop
+// interrupts a link thread mid-store on the same CPU, the store cannot finish until the loop
+// yields the CPU, so a reader that waits for it waits forever. A driver's read() and write(),
+// and a SCHED_FIFO link thread reading what the RT thread stores, use try_load() and make do
+// with their previous copy when it fails; only threads that never preempt the writer may use
+// load_non_rt().
 #pragma once
 
 #include <array>
@@ -37,7 +44,7 @@ class SeqLock {
   }
 
   /// One attempt, never waits: false when a write was in progress (`out` is then unchanged).
-  /// For a thread that must not spin on a writer it may have preempted.
+  /// The only read for the RT thread, and for any thread that may preempt the writer.
   bool try_load(T& out) const noexcept {
     const std::uint64_t before = sequence_.load(std::memory_order_acquire);
     if (before % 2 != 0) return false;
@@ -50,8 +57,9 @@ class SeqLock {
     return true;
   }
 
-  /// Retries until a consistent copy is read. Not for the RT thread.
-  T load() const noexcept {
+  /// Retries until a consistent copy is read: waits for a writer that is mid-store. Never on the
+  /// RT thread (a driver's read()/write()), nor on any thread that may preempt the writer.
+  T load_non_rt() const noexcept {
     T out{};
     while (!try_load(out)) std::this_thread::yield();
     return out;

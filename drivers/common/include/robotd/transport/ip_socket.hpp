@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/result.hpp"
 
 namespace robotd::transport {
@@ -41,8 +42,10 @@ class Socket {
 
 /// Connects to `peer` within `timeout`, with TCP_NODELAY (small JSON messages must not wait for
 /// Nagle). kNotAvailable when nothing answers (refused, unreachable, timed out): the controller
-/// may come later. kInvalidArgument for an address that is not dotted IPv4.
-Result<Socket> connect_tcp(const Endpoint& peer, std::chrono::milliseconds timeout);
+/// may come later. kInvalidArgument for an address that is not dotted IPv4. With `abort`, the
+/// wait looks at it every millisecond and ends with driver::aborted_error when it is requested.
+Result<Socket> connect_tcp(const Endpoint& peer, std::chrono::milliseconds timeout,
+                           const driver::AbortFlag* abort = nullptr);
 
 /// Listens on `local` (port 0: any free port); SO_REUSEADDR so a restarted simulator gets its
 /// port back at once.
