@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -13,6 +14,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "device/command_mailbox.hpp"
 #include "device_models.hpp"
 
 namespace robotd::device {
@@ -110,7 +112,21 @@ class ControlLoopTest : public ::testing::Test {
   }
   const driver::JointCommand& joint(std::size_t j) const { return frame().joints[j]; }
 
-  void set_measured(std::size_t j, double position) { driver_.feedback.joints[j].position_rad = position; }
+  void set_measured(std::size_t j, double position, double velocity = 0) {
+    driver_.feedback.joints[j].position_rad = position;
+    driver_.feedback.joints[j].velocity_rad_s = velocity;
+  }
+  // The driver follows the position setpoint it is sent, as a stiff servo would.
+  void follow_setpoint(std::size_t j) { set_measured(j, joint(j).position_rad, joint(j).velocity_rad_s); }
+
+  // Steps of the setpoint of joint j over the frames written so far, from frame `first`.
+  std::vector<double> setpoint_steps(std::size_t j, std::size_t first) const {
+    std::vector<double> steps;
+    for (std::size_t f = first + 1; f < driver_.frames.size(); ++f) {
+      steps.push_back(driver_.frames[f].joints[j].position_rad - driver_.frames[f - 1].joints[j].position_rad);
+    }
+    return steps;
+  }
 
   ControlEvent session_start(std::uint8_t slot, std::uint32_t generation, ControlMode mode,
                              std::initializer_list<std::size_t> motors, Behavior fallback = Behavior::kDamping,
@@ -141,20 +157,18 @@ class ControlLoopTest : public ::testing::Test {
     ASSERT_TRUE(channel_->post(event));
   }
 
-  // What the command intake does with an accepted command: update the working snapshot and
-  // publish it whole.
+  // What the command intake does with an accepted command, 1 µs after the last tick: write it
+  // into the device's mailbox.
   void send(std::uint8_t slot, std::uint32_t generation, const control::JointTargetUpdate& update) {
-    JointTarget& target = snapshot_.joints[update.joint];
-    target.generation = generation;
-    target.sequence = ++sequence_;
-    target.received_ns = now_ns_;
-    target.update = update;
-    keepalive(slot, generation);
+    control::ValidatedCommand command;
+    command.count = 1;
+    command.joints[0] = update;
+    mailbox_.post(slot, generation, command, now_ns_ + 1000, 0);
   }
   void keepalive(std::uint8_t slot, std::uint32_t generation) {
-    snapshot_.slots[slot] = SlotActivity{generation, now_ns_};
-    channel_->commands.write_buffer() = snapshot_;
-    channel_->commands.publish();
+    control::ValidatedCommand command;
+    command.keepalive = true;
+    mailbox_.post(slot, generation, command, now_ns_ + 1000, 0);
   }
 
   std::vector<LoopEvent> loop_events() {
@@ -178,8 +192,7 @@ class ControlLoopTest : public ::testing::Test {
   LoopSettings settings_;
   std::unique_ptr<ControlLoop> loop_;
   std::int64_t now_ns_ = 1000 * kMsNs;
-  CommandSnapshot snapshot_{};
-  std::uint64_t sequence_ = 0;
+  CommandMailbox mailbox_{*channel_};
 };
 
 TEST_F(ControlLoopTest, OwnedJointsFollowTheirTargetsInLimitedStepsWhileUnownedJointsStayUndriven) {
@@ -286,7 +299,7 @@ TEST_F(ControlLoopTest, SilentSessionTimesOutIntoItsFallbackAndIsReported) {
   EXPECT_EQ(timeouts[0].slot, 0);
   EXPECT_EQ(timeouts[0].generation, 1u);
   EXPECT_EQ(timeouts[0].behavior, Behavior::kDamping);
-  EXPECT_EQ(timeouts[0].silence_ns, 21 * kMsNs);
+  EXPECT_EQ(timeouts[0].silence_ns, 21 * kMsNs - 1000);  // the command came 1 µs after its tick
 }
 
 TEST_F(ControlLoopTest, KeepalivesKeepASessionAlive) {
@@ -591,6 +604,248 @@ TEST_F(ControlLoopTest, StateIsPublishedEveryTickWithTheLatestFeedback) {
   EXPECT_EQ(state->feedback.joint_count, 3u);
   EXPECT_DOUBLE_EQ(state->feedback.joints[1].position_rad, -0.4);
   EXPECT_EQ(channel_->ticks.load(), 2u);
+}
+
+
+// --- the defects the randomized safety test found (tests/safety), one example each ---------
+
+control::JointTargetUpdate mixed_target(std::uint8_t joint, float position, float kp, float kd, float torque) {
+  control::JointTargetUpdate update;
+  update.joint = joint;
+  update.fields = control::kHasPosition | control::kHasKp | control::kHasKd | control::kHasTorque;
+  update.position = position;
+  update.kp = kp;
+  update.kd = kd;
+  update.torque = torque;
+  return update;
+}
+
+TEST_F(ControlLoopTest, ATargetAcceptedBeforeAnEstopIsNeverResumedAfterItsReset) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.5F));
+  run_ms(50);
+  channel_->estop.store(true);
+  send(0, 1, position_target(0, 1.5F));  // the client streams on: accepted as the e-stop lands
+  tick();
+  set_measured(0, 0.3);  // the damped joint sagged
+  run_ms(500);
+  channel_->estop.store(false);
+  const std::size_t reset = driver_.frames.size();
+  run_ms(100);
+  for (std::size_t f = reset; f < driver_.frames.size(); ++f) {
+    ASSERT_DOUBLE_EQ(driver_.frames[f].joints[0].position_rad, 0.3) << "frame " << f;
+  }
+  EXPECT_GE(channel_->dropped_stale.load(), 1U);
+  send(0, 1, position_target(0, 0.5F));  // what the client sends after the reset moves the joint
+  tick();
+  EXPECT_GT(joint(0).position_rad, 0.3);
+}
+
+TEST_F(ControlLoopTest, ATorqueAcceptedBeforeAnEstopIsNotReappliedOnTheResetTick) {
+  start(0, 1, ControlMode::kTorque, {2});
+  tick();
+  send(0, 1, torque_target(2, 4.5F));
+  run_ms(10);
+  channel_->estop.store(true);
+  send(0, 1, torque_target(2, 4.5F));
+  run_ms(20);
+  channel_->estop.store(false);
+  tick();
+  EXPECT_DOUBLE_EQ(joint(2).torque_nm, 0.0);
+  EXPECT_EQ(joint(2).kind, JointCommandKind::kPosition);  // held where it is measured
+}
+
+TEST_F(ControlLoopTest, AfterARecoverTheJointHoldsInsteadOfHeadingForTheOldTarget) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(20);
+  driver_.read_result = driver::IoResult::kDisconnected;
+  send(0, 1, position_target(0, 1.0F));
+  tick();
+  channel_->maintenance_requested.store(true);
+  tick();
+  driver_.read_result = driver::IoResult::kOk;
+  set_measured(0, -0.2);
+  channel_->maintenance_clears_fault.store(true);
+  channel_->maintenance_requested.store(false);
+  tick();
+  run_ms(50);
+  EXPECT_EQ(device_state(), DeviceState::kRunning);
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, -0.2);
+}
+
+TEST_F(ControlLoopTest, AJointMeasuredBeyondItsLimitComesBackInsideUnderTheLimitsWithoutAStep) {
+  set_measured(0, 2.6);  // 0.6 rad above position_max (a narrowed limit, a sagged arm)
+  start(0, 1, ControlMode::kMixed, {0});
+  tick();
+  send(0, 1, mixed_target(0, 1.9F, 40.0F, 2.0F, 0.0F));
+  const std::size_t first = driver_.frames.size();
+  for (int i = 0; i < 2000; ++i) {
+    tick();
+    follow_setpoint(0);
+  }
+  EXPECT_NEAR(driver_.frames[first].joints[0].position_rad, 2.6, 1e-4);  // starts where it is
+  double previous = driver_.frames[first].joints[0].velocity_rad_s * kDt;
+  for (const double step : setpoint_steps(0, first)) {
+    ASSERT_LE(std::fabs(step), 1.0 * kDt + 1e-12);                   // velocity limit
+    ASSERT_LE(std::fabs(step - previous), 10.0 * kDt * kDt + 1e-12);  // acceleration limit
+    previous = step;
+  }
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, static_cast<double>(1.9F));
+}
+
+TEST_F(ControlLoopTest, MixedSessionsKeepFallbackDropsTheClientsTorqueAndGains) {
+  start(session_start(0, 1, ControlMode::kMixed, {1}, Behavior::kKeep, 20 * kMsNs));
+  tick();
+  send(0, 1, mixed_target(1, 0.2F, 80.0F, 6.0F, 4.9F));
+  run_ms(25);  // timed out
+  ASSERT_EQ(loop_events_of(LoopEvent::Type::kSessionTimedOut).size(), 1U);
+  run_ms(5000);
+  EXPECT_FALSE(joint(1).owned);
+  EXPECT_DOUBLE_EQ(joint(1).torque_nm, 0.0);
+  EXPECT_DOUBLE_EQ(joint(1).kp, 50.0);  // the joint's defaults (the session gave none)
+  EXPECT_DOUBLE_EQ(joint(1).kd, 2.0);
+}
+
+TEST_F(ControlLoopTest, KeepOnAMovingJointBrakesToRestWithoutOvershootingAndComingBack) {
+  start(session_start(0, 1, ControlMode::kPosition, {0}, Behavior::kKeep, 20 * kMsNs));
+  tick();
+  send(0, 1, position_target(0, 1.9F));
+  run_ms(15);
+  for (int i = 0; i < 300; ++i) {  // up to speed (1 rad/s) with fresh targets
+    send(0, 1, position_target(0, 1.9F));
+    tick();
+  }
+  ASSERT_NEAR(joint(0).velocity_rad_s, 1.0, 1e-9);
+  const std::size_t first = driver_.frames.size() - 1;
+  run_ms(400);  // silent: times out into KEEP
+  const std::vector<double> steps = setpoint_steps(0, first);
+  for (std::size_t i = 1; i < steps.size(); ++i) {
+    ASSERT_GE(steps[i], -1e-12) << "step " << i << " turns back";
+    ASSERT_LE(steps[i], steps[i - 1] + 1e-15) << "step " << i << " speeds up";
+  }
+  EXPECT_DOUBLE_EQ(joint(0).velocity_rad_s, 0.0);
+}
+
+TEST_F(ControlLoopTest, NonFiniteFeedbackNeverReachesTheDriverAndFaultsNamingTheJoint) {
+  set_measured(1, 0.25);
+  tick();
+  driver_.feedback.joints[1].position_rad = std::nan("");
+  start(0, 1, ControlMode::kPosition, {1});
+  tick();
+  send(0, 1, position_target(1, 1.0F));
+  run_ms(49);  // 50 ms since the last finite reading: the feedback timeout, not beyond it
+  for (const auto& frame : driver_.frames) {
+    ASSERT_TRUE(std::isfinite(frame.joints[1].position_rad));
+    ASSERT_TRUE(std::isfinite(frame.joints[1].velocity_rad_s));
+  }
+  EXPECT_NEAR(driver_.frames[2].joints[1].position_rad, 0.25, 1e-3);  // from the last finite reading
+  EXPECT_EQ(device_state(), DeviceState::kRunning);
+  tick();
+  EXPECT_EQ(device_state(), DeviceState::kFault);
+  const auto latched = loop_events_of(LoopEvent::Type::kFaultLatched);
+  ASSERT_EQ(latched.size(), 1U);
+  EXPECT_EQ(latched[0].fault.code, kFaultNonFiniteFeedback);
+  EXPECT_THAT(latched[0].fault.text.data(), HasSubstr("joint 'j1' has reported no finite position"));
+}
+
+TEST_F(ControlLoopTest, ADeviceIsNotRunningUntilEveryJointHasAFiniteReading) {
+  driver_.feedback.joints[0].velocity_rad_s = std::numeric_limits<double>::infinity();
+  run_ms(5);
+  EXPECT_EQ(device_state(), DeviceState::kConnecting);
+  driver_.feedback.joints[0].velocity_rad_s = 0;
+  tick();
+  EXPECT_EQ(device_state(), DeviceState::kRunning);
+}
+
+TEST_F(ControlLoopTest, AnEstopDuringMaintenanceAbortsItAndReachesTheDriverOnTheTickItEnds) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(10);
+  channel_->maintenance_requested.store(true);
+  tick();
+  ASSERT_TRUE(channel_->maintenance_active.load());
+  run_ms(3);
+  EXPECT_EQ(driver_.abort_requests, 0);
+  channel_->estop.store(true);
+  tick();
+  EXPECT_EQ(driver_.abort_requests, 1);
+  tick();
+  EXPECT_EQ(driver_.abort_requests, 2);  // asked again every tick until the driver lets go
+  const std::size_t written = driver_.frames.size();
+  channel_->maintenance_requested.store(false);  // the maintenance thread gave up
+  tick();
+  ASSERT_EQ(driver_.frames.size(), written + 1);
+  EXPECT_TRUE(frame().estop);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kImpedance);  // damped: the safe behaviour needs no position
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+}
+
+TEST_F(ControlLoopTest, WithoutFreshFeedbackAnEstopFrameLeavesAHeldJointUndriven) {
+  settings_.safe_behavior = Behavior::kKeep;  // a position-only arm holds on e-stop
+  loop_ = std::make_unique<ControlLoop>(driver_, model_, *channel_, settings_);
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.0F));
+  run_ms(10);
+  channel_->maintenance_requested.store(true);
+  tick();
+  channel_->estop.store(true);
+  tick();
+  channel_->maintenance_requested.store(false);
+  driver_.read_result = driver::IoResult::kNoNewData;  // the reconnected device has not answered yet
+  tick();
+  EXPECT_TRUE(frame().estop);
+  EXPECT_EQ(joint(0).kind, JointCommandKind::kNone);  // nothing measured since: nothing to hold
+}
+
+TEST_F(ControlLoopTest, MaintenanceIsDeclinedWhileAnEstopIsEngaged) {
+  tick();
+  channel_->estop.store(true);
+  channel_->maintenance_requested.store(true);
+  tick();
+  EXPECT_FALSE(channel_->maintenance_active.load());
+  EXPECT_TRUE(channel_->maintenance_declined.load());
+  EXPECT_TRUE(frame().estop);
+}
+
+TEST_F(ControlLoopTest, TheEstopFrameGoesOutBeforeTheDeviceHasEverBeenMeasured) {
+  driver_.read_result = driver::IoResult::kNoNewData;
+  tick();
+  EXPECT_TRUE(driver_.frames.empty());
+  channel_->estop.store(true);
+  tick();
+  ASSERT_EQ(driver_.frames.size(), 1U);
+  EXPECT_TRUE(frame().estop);
+  EXPECT_TRUE(channel_->estop_reached.load());
+}
+
+TEST_F(ControlLoopTest, AShutdownDuringMaintenanceAbortsItAndThenRunsTheShutdownStop) {
+  tick();
+  channel_->maintenance_requested.store(true);
+  tick();
+  channel_->shutdown_requested.store(true);
+  run_ms(3);
+  EXPECT_EQ(driver_.abort_requests, 3);
+  EXPECT_FALSE(loop_->finished());
+  channel_->maintenance_requested.store(false);
+  run_ms(20);
+  EXPECT_FALSE(loop_->finished());  // the stop lasts shutdown_duration from when it could begin
+  tick();
+  EXPECT_TRUE(loop_->finished());
+}
+
+TEST_F(ControlLoopTest, SessionsTimeOutOnTimeWhileMaintenanceHoldsTheDriver) {
+  start(session_start(0, 1, ControlMode::kPosition, {0}, Behavior::kDamping, 20 * kMsNs));
+  tick();
+  channel_->maintenance_requested.store(true);
+  run_ms(19);  // 20 ms since the grant
+  EXPECT_TRUE(loop_events_of(LoopEvent::Type::kSessionTimedOut).empty());
+  tick();
+  EXPECT_EQ(loop_events_of(LoopEvent::Type::kSessionTimedOut).size(), 1U);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ JointControl tracking_joint() {
 
 TEST(JointControl, BeginTrackingStartsFromTheMeasuredState) {
   JointControl joint;
-  begin_tracking(joint, measured(0.4, 0.2), 1.0);
+  begin_tracking(joint, measured(0.4, 0.2), motion_limits(), kDt);
   EXPECT_EQ(joint.mode, JointMode::kTrack);
   EXPECT_DOUBLE_EQ(joint.setpoint.position, 0.4);
   EXPECT_DOUBLE_EQ(joint.setpoint.velocity, 0.2);
@@ -56,27 +56,77 @@ TEST(JointControl, BeginTrackingStartsFromTheMeasuredState) {
 
 TEST(JointControl, BeginTrackingClampsTheMeasuredVelocityToTheLimit) {
   JointControl joint;
-  begin_tracking(joint, measured(0.4, -3.0), 1.0);
+  begin_tracking(joint, measured(0.4, -3.0), motion_limits(), kDt);
   EXPECT_DOUBLE_EQ(joint.setpoint.velocity, -1.0);
 }
 
-TEST(JointControl, BeginTrackingIsANoOpWhenAlreadyTracking) {
+TEST(JointControl, BeginTrackingNearALimitSeedsOnlyAVelocityThatStillStopsOnIt) {
+  // 1 mm from the upper limit, moving at 0.9 rad/s toward it: 10 rad/s² cannot stop that in
+  // 1 mm, so the setpoint starts at the speed it can still stop from.
+  JointControl joint;
+  begin_tracking(joint, measured(1.999, 0.9), motion_limits(), kDt);
+  EXPECT_GT(joint.setpoint.velocity, 0.0);
+  EXPECT_LT(joint.setpoint.velocity, 0.15);
+  EXPECT_DOUBLE_EQ(joint.setpoint.velocity, velocity_within_limits(0.9, 1.999, motion_limits(), kDt));
+}
+
+TEST(JointControl, BeginTrackingOutsideALimitNeverSeedsAVelocityOutward) {
+  JointControl joint;
+  begin_tracking(joint, measured(2.6, 0.4), motion_limits(), kDt);
+  EXPECT_DOUBLE_EQ(joint.setpoint.position, 2.6);
+  EXPECT_DOUBLE_EQ(joint.setpoint.velocity, 0.0);
+}
+
+TEST(JointControl, BeginTrackingContinuesTheSetpointTheLastCommandCarried) {
+  // Released into DAMPING and taken by a new session within one tick: the damping was never
+  // written, so the new session continues from the setpoint the driver last got.
   JointControl joint = tracking_joint();
-  begin_tracking(joint, measured(0.4, 0.0), 1.0);
+  joint.setpoint_written = true;
+  joint.mode = JointMode::kDamping;
+  begin_tracking(joint, measured(0.4, 0.0), motion_limits(), kDt);
+  EXPECT_EQ(joint.mode, JointMode::kTrack);
   EXPECT_DOUBLE_EQ(joint.setpoint.position, 0.7);
   EXPECT_DOUBLE_EQ(joint.setpoint.velocity, 0.3);
 }
 
-TEST(JointControl, HoldPositionWhileTrackingStopsAtTheCurrentSetpointKeepingItsGains) {
+TEST(JointControl, BeginTrackingIsANoOpWhenAlreadyTracking) {
   JointControl joint = tracking_joint();
-  hold_position(joint, measured(0.4), Gains{50.0, 2.0});
+  begin_tracking(joint, measured(0.4, 0.0), motion_limits(), kDt);
+  EXPECT_DOUBLE_EQ(joint.setpoint.position, 0.7);
+  EXPECT_DOUBLE_EQ(joint.setpoint.velocity, 0.3);
+}
+
+TEST(JointControl, HoldPositionWhileTrackingBrakesAtOnceAndDropsTheClientsGainsAndTorque) {
+  JointControl joint = tracking_joint();  // at 0.7 rad, moving at 0.3 rad/s, kp 30, 1 N·m feed-forward
+  hold_position(joint, measured(0.4), Gains{50.0, 2.0}, motion_limits(), kDt);
   EXPECT_EQ(joint.mode, JointMode::kTrack);
-  EXPECT_DOUBLE_EQ(joint.target_position, 0.7);
+  // Braking from the next step on: 0.29, 0.28, … rad/s, each for 1 ms.
+  double distance = 0;
+  for (int k = 1; k < 30; ++k) distance += (0.3 - 10.0 * kDt * k) * kDt;
+  EXPECT_NEAR(joint.target_position, 0.7 + distance, 1e-12);
   EXPECT_DOUBLE_EQ(joint.target_velocity, 0.0);
   EXPECT_EQ(joint.extrapolate_ns, 0);
   EXPECT_DOUBLE_EQ(joint.setpoint.position, 0.7);
-  EXPECT_DOUBLE_EQ(joint.kp, 30.0);
-  EXPECT_DOUBLE_EQ(joint.kd, 3.0);
+  EXPECT_DOUBLE_EQ(joint.kp, 50.0);
+  EXPECT_DOUBLE_EQ(joint.kd, 2.0);
+  EXPECT_DOUBLE_EQ(joint.torque_nm, 0.0);
+}
+
+TEST(JointControl, HeldJointDeceleratesToRestWithoutTurningBack) {
+  JointControl joint = tracking_joint();
+  hold_position(joint, measured(0.4), Gains{50.0, 2.0}, motion_limits(), kDt);
+  double previous_velocity = 0.3;
+  double position = 0.7;
+  for (std::int64_t ms = 1; ms <= 100; ++ms) {
+    const driver::JointCommand out = joint_output(joint, measured(0.4), motion_limits(), kDt, ms * kMsNs);
+    ASSERT_GE(out.velocity_rad_s, 0.0) << "ms " << ms;
+    ASSERT_LE(out.velocity_rad_s, previous_velocity + 1e-12) << "ms " << ms;
+    ASSERT_GE(out.position_rad, position - 1e-15) << "ms " << ms;
+    previous_velocity = out.velocity_rad_s;
+    position = out.position_rad;
+  }
+  EXPECT_DOUBLE_EQ(previous_velocity, 0.0);
+  EXPECT_NEAR(position, joint.target_position, 1e-12);
 }
 
 TEST(JointControl, HoldPositionWhenNotTrackingHoldsTheMeasuredPositionWithTheFallbackGains) {
@@ -84,7 +134,7 @@ TEST(JointControl, HoldPositionWhenNotTrackingHoldsTheMeasuredPositionWithTheFal
   joint.mode = JointMode::kDamping;
   joint.torque_nm = 2.0;
   joint.track_kind = JointCommandKind::kImpedance;
-  hold_position(joint, measured(0.4, 0.9), Gains{50.0, 2.0});
+  hold_position(joint, measured(0.4, 0.9), Gains{50.0, 2.0}, motion_limits(), kDt);
   EXPECT_EQ(joint.mode, JointMode::kTrack);
   EXPECT_EQ(joint.track_kind, JointCommandKind::kPosition);
   EXPECT_DOUBLE_EQ(joint.target_position, 0.4);
@@ -110,16 +160,17 @@ TEST(JointControl, HoldMeasuredDropsTheOldTargetAndSetpoint) {
   EXPECT_DOUBLE_EQ(joint.torque_nm, 0.0);
 }
 
-TEST(JointControl, KeepBehaviourHoldsPosition) {
+TEST(JointControl, KeepBehaviourHoldsWhereTheJointComesToRest) {
   JointControl joint = tracking_joint();
-  apply_behavior(joint, Behavior::kKeep, measured(0.4), Gains{50.0, 2.0});
+  apply_behavior(joint, Behavior::kKeep, measured(0.4), Gains{50.0, 2.0}, motion_limits(), kDt);
   EXPECT_EQ(joint.mode, JointMode::kTrack);
-  EXPECT_DOUBLE_EQ(joint.target_position, 0.7);
+  EXPECT_DOUBLE_EQ(joint.target_position, braking_point(LimiterState{0.7, 0.3}, motion_limits(), kDt));
+  EXPECT_DOUBLE_EQ(joint.torque_nm, 0.0);
 }
 
 TEST(JointControl, DampingBehaviourCommandsDampingAtTheMeasuredPosition) {
   JointControl joint = tracking_joint();
-  apply_behavior(joint, Behavior::kDamping, measured(0.4), Gains{50.0, 2.5});
+  apply_behavior(joint, Behavior::kDamping, measured(0.4), Gains{50.0, 2.5}, motion_limits(), kDt);
   EXPECT_EQ(joint.mode, JointMode::kDamping);
   const driver::JointCommand out = joint_output(joint, measured(0.45), motion_limits(), kDt, 0);
   EXPECT_EQ(out.kind, JointCommandKind::kImpedance);
@@ -131,7 +182,7 @@ TEST(JointControl, DampingBehaviourCommandsDampingAtTheMeasuredPosition) {
 
 TEST(JointControl, ZeroTorqueBehaviourLetsGo) {
   JointControl joint = tracking_joint();
-  apply_behavior(joint, Behavior::kZeroTorque, measured(0.4), Gains{50.0, 2.0});
+  apply_behavior(joint, Behavior::kZeroTorque, measured(0.4), Gains{50.0, 2.0}, motion_limits(), kDt);
   EXPECT_EQ(joint.mode, JointMode::kZeroTorque);
   const driver::JointCommand out = joint_output(joint, measured(0.45), motion_limits(), kDt, 0);
   EXPECT_EQ(out.kind, JointCommandKind::kImpedance);
@@ -162,7 +213,7 @@ TEST(JointControl, TorqueModeCommandsPureTorque) {
 
 TEST(JointControl, TrackingCommandsTheLimitedSetpointWithTheJointsKindAndGains) {
   JointControl joint;
-  begin_tracking(joint, measured(0.0), 1.0);
+  begin_tracking(joint, measured(0.0), motion_limits(), kDt);
   joint.target_position = 1.0;
   joint.kp = 40.0;
   joint.kd = 4.0;

@@ -1,14 +1,26 @@
 #include "shrink.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <string>
 
 namespace robotd::safety {
 namespace {
 
+// What kind of violation it is: the invariant and its reason, without the numbers.
+std::string signature(const Violation& violation) {
+  std::string text = violation.invariant + ": " + violation.detail.substr(0, violation.detail.find('['));
+  std::string kind;
+  for (const char c : text) {
+    if (std::isdigit(static_cast<unsigned char>(c)) == 0) kind += c;
+  }
+  return kind;
+}
+
 class Shrinker {
  public:
   Shrinker(const Scenario& failing, const RunResult& failure, std::size_t max_replays)
-      : best_(failing), best_result_(failure), invariant_(failure.violation->invariant), budget_(max_replays) {
+      : best_(failing), best_result_(failure), kind_(signature(*failure.violation)), budget_(max_replays) {
     best_.events.resize(std::min(best_.events.size(), failure.events_run));
   }
 
@@ -27,7 +39,7 @@ class Shrinker {
     ++replays_;
     Scenario candidate{best_.device, std::move(events)};
     RunResult result = run_scenario(candidate);
-    if (!result.violation || result.violation->invariant != invariant_) return false;
+    if (!result.violation || signature(*result.violation) != kind_) return false;
     candidate.events.resize(std::min(candidate.events.size(), result.events_run));
     best_ = std::move(candidate);
     best_result_ = std::move(result);
@@ -92,7 +104,7 @@ class Shrinker {
 
   Scenario best_;
   RunResult best_result_;
-  std::string invariant_;
+  std::string kind_;
   std::size_t budget_;
   std::size_t replays_ = 0;
 };

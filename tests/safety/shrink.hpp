@@ -1,4 +1,5 @@
-// Shrinks a failing scenario to a minimal one that still breaks the same invariant: cut
+// Shrinks a failing scenario to a minimal one that still breaks the same invariant in the
+// same way (the same reason, whatever its numbers): cut
 // everything after the failure, remove chunks of events (delta debugging) while it still
 // fails, then shorten each run of ticks. Bounded by a number of replays.
 #pragma once
