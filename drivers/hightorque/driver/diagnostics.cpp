@@ -27,7 +27,12 @@ driver::Diagnostics HighTorqueDriver::diagnostics() const {
   const DriverSnapshot snapshot = snapshot_.load_non_rt();
   driver::Diagnostics values;
   values.emplace_back("link", snapshot.link_up ? "up" : "down");
-  values.emplace_back("motor_timeout_ms", std::to_string(motor_timeout_ms_.load()));
+  const int watchdog_ms = motor_timeout_ms_.load();
+  values.emplace_back("motor_timeout_ms", std::to_string(watchdog_ms));
+  values.emplace_back("motor_watchdog", watchdog_ms == 0 ? "DISARMED by params.motor_timeout_ms = 0: a motor keeps its "
+                                                           "last command if robotd dies"
+                                                         : "armed: a motor brakes " + std::to_string(watchdog_ms) +
+                                                               " ms after its last command");
   for (std::size_t b = 0; b < params_.buses.size(); ++b) {
     const BusCounters& bus = snapshot.buses[b];
     const std::string prefix = "bus." + params_.buses[b].name;

@@ -17,6 +17,21 @@ constexpr Query kTickQuery = Query::kStateTemperature;
 constexpr std::uint64_t kPublishEveryTicks = 10;
 constexpr std::size_t kRequestsPerTick = 4;
 
+/// Whether robotd holds `joint` this tick: a position target, or any stiffness, damping or torque
+/// (a session's command, or the KEEP or DAMPING it left behind). Zero torque and never-commanded
+/// joints are free.
+bool holds(const driver::JointCommand& joint) noexcept {
+  switch (joint.kind) {
+    case driver::JointCommandKind::kNone:
+      return false;
+    case driver::JointCommandKind::kPosition:
+      return true;
+    case driver::JointCommandKind::kImpedance:
+      return joint.kp != 0 || joint.kd != 0 || joint.torque_nm != 0;
+  }
+  return true;
+}
+
 }  // namespace
 
 HighTorqueDriver::HighTorqueDriver() = default;
@@ -70,9 +85,11 @@ driver::DeviceDescription HighTorqueDriver::describe() const {
        "{}: every motor's bus, CAN id, mode, fault, temperature (°C) and reply count, and each bus's frame counts"},
       {"motor_info", "{\"motor\": name or index}: the motor's firmware and hardware versions and model name"},
       {"set_motor_timeout",
-       "{\"timeout_ms\": 0..65535}: every motor's own command timeout (0 disarms): without commands that long a motor "
-       "brakes by itself"},
-      {"reboot_motor", "{\"motor\": name or index}: soft-reboots a motor nobody holds (it comes back free-wheeling)"},
+       "{\"timeout_ms\": 20..1000}: every motor's own command timeout: without commands that long a motor brakes by "
+       "itself (disarming it is only possible through params.motor_timeout_ms)"},
+      {"reboot_motor",
+       "{\"motor\": name or index}: soft-reboots a motor robotd does not hold (no session, no KEEP or DAMPING, no "
+       "e-stop; on a board bus its whole port), which comes back free-wheeling; then re-arms its watchdog"},
   };
   return description;
 }
@@ -150,6 +167,10 @@ void HighTorqueDriver::restart_silence_checks() noexcept {
 }
 
 Result<void> HighTorqueDriver::clear_faults() {
+  // A motor that rebooted or lost power came back with its own watchdog disarmed.
+  std::vector<std::size_t> all(params_.motors.size());
+  for (std::size_t m = 0; m < all.size(); ++m) all[m] = m;
+  send_to_motors(all, SystemRequest::Kind::kCommandTimeout, motor_timeout_ms_.load());
   std::vector<std::size_t> faulted;
   for (std::size_t m = 0; m < params_.motors.size(); ++m) {
     if (motors_[m].status.fault != 0) faulted.push_back(m);
@@ -304,6 +325,7 @@ driver::IoResult HighTorqueDriver::write(const driver::CommandFrame& command, dr
   }
   ++ticks_;
   send_tick(command);
+  if (const RebootRequest* reboot = reboot_.take()) reboot_.answer(decide_reboot(command, reboot->motor));
   for (std::size_t i = 0; i < kRequestsPerTick; ++i) {
     const auto queued = requests_.pop();
     if (!queued) break;
@@ -334,6 +356,30 @@ void HighTorqueDriver::send_tick(const driver::CommandFrame& command) noexcept {
                                      kTickQuery);
     }
   }
+}
+
+HighTorqueDriver::RebootOutcome HighTorqueDriver::decide_reboot(const driver::CommandFrame& command,
+                                                                std::size_t motor) noexcept {
+  using Verdict = RebootOutcome::Verdict;
+  if (command.estop) return {.verdict = Verdict::kEstop};
+  const MotorParams& target = params_.motors[motor];
+  const bool whole_port = params_.buses[target.bus].kind == BusParams::Kind::kBoard;  // the board reboots a port
+  for (const std::size_t m : motors_on_bus_[target.bus]) {
+    if (m != motor && !whole_port) continue;
+    const driver::JointCommand& joint = command.joints[m];
+    if (joint.owned) return {.verdict = Verdict::kOwned, .blocking_motor = m};
+    if (holds(joint)) return {.verdict = Verdict::kHeld, .blocking_motor = m};
+  }
+  switch (
+      buses_[target.bus]->send_system(SystemRequest{.kind = SystemRequest::Kind::kSoftReboot, .motor = target.id})) {
+    case BusIo::kOk:
+      return {.verdict = Verdict::kSent, .blocking_motor = 0, .replies_at_send = motors_[motor].status.replies};
+    case BusIo::kBusy:
+      return {.verdict = Verdict::kBusBusy};
+    case BusIo::kClosed:
+      break;
+  }
+  return {.verdict = Verdict::kLinkClosed};
 }
 
 BlockSlot HighTorqueDriver::to_motor_frame(std::size_t m, const driver::JointCommand& joint) const noexcept {

@@ -25,6 +25,7 @@
 #include "driver/motor_bus.hpp"
 #include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
+#include "robotd/driver/rt_handoff.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/spsc_ring.hpp"
 #include "robotd/imu/imu_source.hpp"
@@ -117,6 +118,18 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   Result<void> check_zeroable(std::span<const int> joints) const;
   Result<void> zero(std::span<const int> joints);
 
+  // reboot_motor, decided by write() at the tick that would send it.
+  struct RebootRequest {
+    std::size_t motor = 0;
+  };
+  struct RebootOutcome {
+    enum class Verdict : std::uint8_t { kSent, kEstop, kOwned, kHeld, kBusBusy, kLinkClosed };
+    Verdict verdict = Verdict::kSent;
+    std::size_t blocking_motor = 0;     // kOwned, kHeld: the motor robotd holds
+    std::uint64_t replies_at_send = 0;  // kSent: the motor's reply count when the reboot went out
+  };
+  RebootOutcome decide_reboot(const driver::CommandFrame& command, std::size_t motor) noexcept;
+
   // RT helpers.
   bool motor_fault(std::int64_t now_ns, driver::FaultInfo& fault) noexcept;
   void publish(std::int64_t now_ns) noexcept;
@@ -129,6 +142,11 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   Result<nlohmann::json> op_motor_info(const nlohmann::json& args);
   Result<nlohmann::json> op_set_motor_timeout(const nlohmann::json& args);
   Result<nlohmann::json> op_reboot_motor(const nlohmann::json& args);
+  /// After a reboot: once `motor` answers again, its own watchdog (which a reboot disarms) is set
+  /// to motor_timeout_ms again. False when it did not answer within reply_timeout_ms.
+  bool rearm_watchdog_after_reboot(std::size_t motor, std::uint64_t replies_at_send);
+  /// The motors a reboot of `motor` restarts: the motor, or its whole port on a board bus.
+  std::vector<std::size_t> rebooted_with(std::size_t motor) const;
   /// Queues a system request for the RT thread to send (fails when the loop is not draining).
   Result<void> queue_request(std::size_t motor, const SystemRequest& request);
   std::vector<Reply> collect_replies(std::size_t motor, std::size_t count);
@@ -160,6 +178,7 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
   };
   driver::SpscRing<QueuedRequest, 64> requests_;
   driver::SpscRing<BusReply, 256> replies_;  // every reply that is not a motor's state
+  driver::RtHandoff<RebootRequest, RebootOutcome> reboot_;
   /// Whether a reply heard on its bus came from logical motor `motor`.
   bool from_motor(const BusReply& reply, std::size_t motor) const;
   mutable std::mutex ops_mutex_;  // one op at a time; never taken by the RT thread

@@ -154,9 +154,15 @@ Result<nlohmann::json> HighTorqueDriver::op_motor_info(const nlohmann::json& arg
 }
 
 Result<nlohmann::json> HighTorqueDriver::op_set_motor_timeout(const nlohmann::json& args) {
-  driver::OpArguments arguments("set_motor_timeout", args, "{\"timeout_ms\": 0..65535}");
-  arguments.reader().require("timeout_ms", "the motors' own command timeout in ms, 0 disarms");
-  const auto timeout_ms = arguments.reader().integer("timeout_ms", 0, 65535);
+  // Any client may call an op, so it can only set a safe watchdog; disarming it (0) is for the
+  // config (params.motor_timeout_ms), which robotd's owner writes.
+  const std::string range = std::to_string(kMinMotorTimeoutMs) + ".." + std::to_string(kMaxMotorTimeoutMs);
+  driver::OpArguments arguments("set_motor_timeout", args,
+                                "{\"timeout_ms\": " + range +
+                                    "}; 0, which disarms the motors' own watchdog, only through "
+                                    "params.motor_timeout_ms");
+  arguments.reader().require("timeout_ms", "the motors' own command timeout in ms, " + range);
+  const auto timeout_ms = arguments.reader().integer("timeout_ms", kMinMotorTimeoutMs, kMaxMotorTimeoutMs);
   if (auto problem = arguments.finish()) return *problem;
   for (std::size_t m = 0; m < params_.motors.size(); ++m) {
     const SystemRequest request{.kind = SystemRequest::Kind::kCommandTimeout,
@@ -175,18 +181,85 @@ Result<nlohmann::json> HighTorqueDriver::op_set_motor_timeout(const nlohmann::js
   return json{{"timeout_ms", *timeout_ms}, {"motors", params_.motors.size()}};
 }
 
+std::vector<std::size_t> HighTorqueDriver::rebooted_with(std::size_t motor) const {
+  const std::size_t bus = params_.motors[motor].bus;
+  if (params_.buses[bus].kind == BusParams::Kind::kBoard) return motors_on_bus_[bus];
+  return {motor};
+}
+
 Result<nlohmann::json> HighTorqueDriver::op_reboot_motor(const nlohmann::json& args) {
+  using Verdict = RebootOutcome::Verdict;
   const auto chosen = motor_argument(args, "reboot_motor", kMotorUsage);
   if (!chosen) return chosen.error();
   const std::size_t motor = chosen.value();
-  if (snapshot_.load_non_rt().motors[motor].owned) {
-    return make_error(ErrorCode::kRefused,
-                      "reboot_motor: " + params_.motors[motor].name + " is held by a session; release it first");
+  const std::string& name = params_.motors[motor].name;
+  if (!connected_.load(std::memory_order_acquire)) {
+    return make_error(ErrorCode::kNotAvailable, "reboot_motor: the motors are not connected");
   }
-  const int id = params_.motors[motor].id;
-  auto queued = queue_request(motor, SystemRequest{.kind = SystemRequest::Kind::kSoftReboot, .motor = id});
-  if (!queued) return queued.error();
-  return json{{"motor", params_.motors[motor].name}, {"rebooted", true}};
+  // The RT thread decides at the tick it would send the reboot, from that tick's commands: a
+  // session or a fallback that takes the motor meanwhile is seen (a snapshot could be 10 ticks old).
+  if (!reboot_.offer(RebootRequest{.motor = motor})) {
+    return make_error(ErrorCode::kRefused, "reboot_motor: another reboot is being decided; try again");
+  }
+  const auto outcome = reboot_.await(std::chrono::milliseconds(params_.reply_timeout_ms));
+  if (!outcome) {
+    return make_error(ErrorCode::kNotAvailable,
+                      "reboot_motor: the control loop did not take the request within " +
+                          std::to_string(params_.reply_timeout_ms) +
+                          " ms (robotd pauses it during recover and reset_zero); nothing was sent");
+  }
+  const std::string& blocking = params_.motors[outcome->blocking_motor].name;
+  const std::string port_mate =
+      outcome->blocking_motor == motor
+          ? ""
+          : " (" + blocking + " shares " + name + "'s board port, and the board reboots the whole port)";
+  switch (outcome->verdict) {
+    case Verdict::kEstop:
+      return make_error(ErrorCode::kRefused,
+                        "reboot_motor: robotd's e-stop brakes every motor, and a rebooting motor lets go; reset the "
+                        "e-stop first");
+    case Verdict::kOwned:
+      return make_error(ErrorCode::kRefused,
+                        "reboot_motor: " + blocking + " is held by a session; release it first" + port_mate);
+    case Verdict::kHeld:
+      return make_error(ErrorCode::kRefused,
+                        "reboot_motor: robotd still holds " + blocking +
+                            " (the KEEP or DAMPING a session left it in), and a rebooting motor lets go; take it "
+                            "with a session whose default_behavior is ZERO_TORQUE and release it first" +
+                            port_mate);
+    case Verdict::kBusBusy:
+      return make_error(ErrorCode::kRefused, "reboot_motor: bus '" + params_.buses[params_.motors[motor].bus].name +
+                                                 "' was too busy to take the frame; nothing was sent, try again");
+    case Verdict::kLinkClosed:
+      return make_error(ErrorCode::kNotAvailable,
+                        "reboot_motor: bus '" + params_.buses[params_.motors[motor].bus].name + "' is closed");
+    case Verdict::kSent:
+      break;
+  }
+  json rebooted = json::array();
+  for (const std::size_t m : rebooted_with(motor)) rebooted.push_back(params_.motors[m].name);
+  const int watchdog_ms = motor_timeout_ms_.load();
+  json result{{"motor", name}, {"rebooted", rebooted}, {"watchdog_ms", watchdog_ms}};
+  result["watchdog_rearmed"] = rearm_watchdog_after_reboot(motor, outcome->replies_at_send);
+  if (!result["watchdog_rearmed"].get<bool>()) {
+    result["note"] = name + " did not answer within " + std::to_string(params_.reply_timeout_ms) +
+                     " ms of its reboot: its own watchdog stays disarmed until recover re-arms it";
+  }
+  return result;
+}
+
+bool HighTorqueDriver::rearm_watchdog_after_reboot(std::size_t motor, std::uint64_t replies_at_send) {
+  // A reply to the command sent in the reboot's own tick may still come; one more is the motor
+  // answering after its reboot.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  while (snapshot_.load_non_rt().motors[motor].replies <= replies_at_send + 1) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const SystemRequest rearm{.kind = SystemRequest::Kind::kCommandTimeout,
+                            .motor = params_.motors[motor].id,
+                            .value = motor_timeout_ms_.load()};
+  return queue_request(motor, rearm).ok();
 }
 
 }  // namespace robotd::hightorque

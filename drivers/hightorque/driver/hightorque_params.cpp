@@ -88,6 +88,21 @@ void check_motor(JsonReader& reader, const MotorParams& motor) {
   }
 }
 
+/// The default gains robotd falls back on must hold the joint (`whose`: "joint \"l_knee\"" or
+/// "every motor"): describe() claims DAMPING, which is kp = 0, kd = default_kd.
+void check_holding_gains(JsonReader& reader, const MotorParams& motor, const std::string& whose) {
+  if (reader.has("default_kd") && !(motor.default_kd > 0)) {
+    reader.error("default_kd", "expected more than 0 for " + whose + ", got " + format_number(motor.default_kd) +
+                                   ": DAMPING holds a joint with kp = 0 and kd = default_kd, so 0 would let it "
+                                   "free-wheel while robotd reports DAMPING");
+  }
+  if (reader.has("default_kp") && !(motor.default_kp > 0)) {
+    reader.error("default_kp", "expected more than 0 for " + whose + ", got " + format_number(motor.default_kp) +
+                                   ": a POSITION command without gains, and KEEP of a joint that was not "
+                                   "tracking, hold it with default_kp and default_kd, so 0 would not hold it");
+  }
+}
+
 std::string names_of(const std::vector<BusParams>& buses) {
   std::string names;
   for (const auto& bus : buses) names += (names.empty() ? "" : ", ") + bus.name;
@@ -105,6 +120,7 @@ void read_motors(JsonReader& reader, HighTorqueParams& out, const std::map<std::
                                         .kd_max = 50.0};
   if (auto reader_defaults = reader.object("motor_defaults")) {
     read_motor_settings(*reader_defaults, defaults);
+    check_holding_gains(*reader_defaults, defaults, "every motor");
     reader_defaults->finish();
   }
   reader.require("motors", "the joint map: [{\"name\", \"bus\", \"id\", …}], one entry per motor");
@@ -144,6 +160,7 @@ void read_motors(JsonReader& reader, HighTorqueParams& out, const std::map<std::
       }
     }
     check_motor(motor_reader, motor);
+    check_holding_gains(motor_reader, motor, "joint \"" + motor.name + "\"");
     motor_reader.finish();
     out.motors.push_back(std::move(motor));
   }
@@ -171,6 +188,14 @@ Result<HighTorqueParams> parse_hightorque_params(const nlohmann::json& params) {
   const std::string width = reader.string_or("width", "int16", {"int16", "int32", "float"});
   out.width = width == "int32" ? Width::kInt32 : width == "float" ? Width::kFloat : Width::kInt16;
   out.motor_timeout_ms = static_cast<int>(reader.integer_or("motor_timeout_ms", out.motor_timeout_ms, 0, 65535));
+  if (out.motor_timeout_ms != 0 &&
+      (out.motor_timeout_ms < kMinMotorTimeoutMs || out.motor_timeout_ms > kMaxMotorTimeoutMs)) {
+    reader.error("motor_timeout_ms",
+                 "expected " + std::to_string(kMinMotorTimeoutMs) + ".." + std::to_string(kMaxMotorTimeoutMs) +
+                     " (shorter brakes the motors under normal jitter, longer lets the robot fall before they brake), "
+                     "or 0 to disarm every motor's own watchdog, got " +
+                     std::to_string(out.motor_timeout_ms));
+  }
   out.feedback_timeout_ms = static_cast<int>(reader.integer_or("feedback_timeout_ms", out.feedback_timeout_ms, 5, 90));
   out.connect_timeout_ms = static_cast<int>(reader.integer_or("connect_timeout_ms", out.connect_timeout_ms, 10, 10000));
   out.reply_timeout_ms = static_cast<int>(reader.integer_or("reply_timeout_ms", out.reply_timeout_ms, 10, 10000));

@@ -30,6 +30,11 @@ struct BusParams {
   transport::SerialConfig serial;
 };
 
+/// What the set_motor_timeout op may set: a shorter watchdog brakes the motors under normal
+/// jitter, a longer one lets a robot fall before they brake. 0 (disarmed) only through the config.
+inline constexpr int kMinMotorTimeoutMs = 20;
+inline constexpr int kMaxMotorTimeoutMs = 1000;
+
 struct MotorParams {
   std::string name;     // the joint's name in /joint_states
   std::size_t bus = 0;  // index into HighTorqueParams::buses
@@ -39,8 +44,11 @@ struct MotorParams {
   std::string model;  // key of motor_models
   MotorScaling scaling;
   driver::JointLimits limits;
-  double default_kp = 0;
-  double default_kd = 0;
+  // Both must be above 0: DAMPING holds a joint with kp = 0 and kd = default_kd, and KEEP holds a
+  // joint that was not tracking (after a TORQUE session) with both. 40 and 1.0 are the shipped
+  // PI Plus configs' values; 1.0 is also the kd of the vendor's own passive (damping) mode.
+  double default_kp = 40;
+  double default_kd = 1.0;
 };
 
 struct HighTorqueParams {
@@ -49,7 +57,7 @@ struct HighTorqueParams {
   std::vector<MotorParams> motors;  // index = logical motor id (robotd's joint index)
   Width width = Width::kInt16;      // parameter width of single-motor frames (blocks are int16)
   /// Each motor's own command timeout (system command 0x05): no command this long and the motor
-  /// brakes by itself, so the robot brakes when robotd dies. 0 disarms it.
+  /// brakes by itself, so the robot brakes when robotd dies. 0 disarms it (diagnostics say so).
   int motor_timeout_ms = 200;
   int feedback_timeout_ms = 50;  // no reply from a bus this long: its link is lost
   int connect_timeout_ms = 500;  // every motor must answer this soon after the link opens

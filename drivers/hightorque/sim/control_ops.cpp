@@ -49,6 +49,7 @@ json motor_json(const SimMotor& motor) {
           {"timeout_ms", motor.timeout_ms()},
           {"temperature_c", motor.temperature_c()},
           {"commands", motor.requests()},
+          {"reboots", motor.reboots()},
           {"zero_offset_rad", motor.zero_offset_rad()},
           {"external_torque_nm", motor.external_torque_nm()},
           {"push_period_us", motor.push_period_us()},

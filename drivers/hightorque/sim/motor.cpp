@@ -56,6 +56,7 @@ void SimMotor::set_zero() {
 }
 
 void SimMotor::soft_reboot() {
+  ++reboots_;
   mode_ = Mode::kStop;
   stored_ = MotorCommand{};
   timeout_ms_ = 0;

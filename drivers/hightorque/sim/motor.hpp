@@ -91,6 +91,7 @@ class SimMotor {
   std::uint16_t timeout_ms() const { return timeout_ms_; }
   double temperature_c() const { return temperature_c_; }
   std::uint64_t requests() const { return requests_; }
+  std::uint64_t reboots() const { return reboots_; }
   double zero_offset_rad() const { return zero_offset_rad_; }
   double external_torque_nm() const { return external_torque_nm_; }
   bool muted() const { return muted_; }
@@ -123,6 +124,7 @@ class SimMotor {
   double external_torque_nm_ = 0;
   bool muted_ = false;
   std::uint64_t requests_ = 0;
+  std::uint64_t reboots_ = 0;  // soft reboots, for tests
   Query push_query_ = Query::kNone;
   Width push_width_ = Width::kInt16;
   std::uint32_t push_period_us_ = 0;

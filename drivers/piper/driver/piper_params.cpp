@@ -1,7 +1,9 @@
 #include "driver/piper_params.hpp"
 
 #include <sstream>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "robotd/driver/json_reader.hpp"
@@ -96,6 +98,18 @@ void read_joint(JsonReader& reader, PiperJointParams& joint) {
   if (joint.default_kd > limits.kd_max) {
     reader.error("default_kd", "expected at most kd_max (" + format_number(limits.kd_max) + "), got " +
                                    format_number(joint.default_kd));
+  }
+  // An arm joint's DAMPING is MIT with kp = 0 and kd = default_kd, and KEEP of a joint that was not
+  // tracking holds it with both: 0 would let it go while robotd reports DAMPING or KEEP.
+  if (joint.name != "gripper") {
+    for (const auto& [key, gain] :
+         {std::pair{"default_kp", joint.default_kp}, std::pair{"default_kd", joint.default_kd}}) {
+      if (reader.has(key) && !(gain > 0)) {
+        reader.error(key, "expected more than 0 for " + joint.name + ", got " + format_number(gain) +
+                              ": DAMPING (kp = 0, kd = default_kd) and KEEP of a joint that was not tracking hold "
+                              "the joint with these gains, so 0 would let it go");
+      }
+    }
   }
   reader.finish();
 }

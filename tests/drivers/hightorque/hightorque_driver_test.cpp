@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "hightorque_sim_process.hpp"
 #include "imu_sim_process.hpp"
 #include "maintenance_abort.hpp"
+#include "robotd/driver/json_reader.hpp"
 
 namespace robotd::hightorque {
 namespace {
@@ -119,6 +122,18 @@ TEST(HighTorqueParams, EachMistakeNamesItsKeyAndWhatIsExpected) {
                    with([](auto& p) { p["motors"][0]["model"] = "9999_1"; }),
                    {"motors[0].model", "no motor model \"9999_1\""}});
   cases.push_back({"a misspelt key", with([](auto& p) { p["motor_timout_ms"] = 100; }), {"motor_timout_ms"}});
+  cases.push_back({"a damping gain of 0 (DAMPING would free-wheel)",
+                   with([](auto& p) { p["motors"][2]["default_kd"] = 0; }),
+                   {"motors[2].default_kd", "expected more than 0 for joint \"a3\"", "free-wheel"}});
+  cases.push_back({"a holding stiffness of 0 for every motor",
+                   with([](auto& p) { p["motor_defaults"]["default_kp"] = 0; }),
+                   {"motor_defaults.default_kp", "expected more than 0 for every motor"}});
+  cases.push_back({"a motor watchdog too long to brake a falling robot",
+                   with([](auto& p) { p["motor_timeout_ms"] = 5000; }),
+                   {"motor_timeout_ms", "expected 20..1000", "or 0 to disarm", "got 5000"}});
+  cases.push_back({"a motor watchdog shorter than normal jitter",
+                   with([](auto& p) { p["motor_timeout_ms"] = 5; }),
+                   {"motor_timeout_ms", "expected 20..1000", "got 5"}});
   cases.push_back({"an IMU without its serial line",
                    with([](auto& p) {
                      p["imu"] = {{"source", "yesense"}};
@@ -131,6 +146,59 @@ TEST(HighTorqueParams, EachMistakeNamesItsKeyAndWhatIsExpected) {
       EXPECT_NE(error.find(part), std::string::npos) << c.what << ": \"" << error << "\" lacks \"" << part << "\"";
     }
   }
+}
+
+// The shipped configs' HighTorque params pass the driver's checks (robotd --check-config cannot
+// see driver params), the default config's PI Plus included.
+TEST(HighTorqueConfigs, ShippedExamplesAndTheDefaultConfigParse) {
+  for (const char* file :
+       {"config/examples/hightorque.json", "config/examples/hightorque-sim.json", "config/robotd.json"}) {
+    std::ifstream in(std::string(ROBOTD_SOURCE_DIR) + "/" + file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<std::string> errors;
+    const auto config = parse_json_with_comments(text, file, errors);
+    ASSERT_TRUE(config) << join_errors(errors);
+    // The examples are one device entry; robotd.json has a list of them.
+    const nlohmann::json devices =
+        config->contains("devices") ? config->at("devices") : nlohmann::json::array({*config});
+    int hightorque_devices = 0;
+    for (const auto& device : devices) {
+      if (device.at("driver") != "hightorque") continue;
+      ++hightorque_devices;
+      const auto params = parse_hightorque_params(device.at("params"));
+      EXPECT_TRUE(params) << file << ": " << params.error().message;
+    }
+    EXPECT_EQ(hightorque_devices, 1) << file;
+  }
+}
+
+// Without default gains a motor still holds in DAMPING and KEEP (kd 1.0, kp 40); disarming the
+// motors' own watchdog is a config decision that the diagnostics shout about.
+TEST(HighTorqueParams, DefaultGainsHoldAndADisarmedWatchdogIsShownLoudly) {
+  nlohmann::json params = valid_params(placeholder_buses());
+  params["motor_defaults"].erase("default_kp");
+  params["motor_defaults"].erase("default_kd");
+  params["motor_timeout_ms"] = 0;
+  HighTorqueDriver driver;
+  const auto configured = driver.configure(params);
+  ASSERT_TRUE(configured) << configured.error().message;
+  for (const driver::JointDescription& joint : driver.describe().joints) {
+    EXPECT_EQ(joint.default_kp, 40) << joint.name;
+    EXPECT_EQ(joint.default_kd, 1.0) << joint.name;
+  }
+  EXPECT_EQ(diagnostic(driver, "motor_watchdog").rfind("DISARMED by params.motor_timeout_ms = 0", 0), 0U)
+      << diagnostic(driver, "motor_watchdog");
+  params["motor_timeout_ms"] = 200;
+  ASSERT_TRUE(driver.configure(params));
+  EXPECT_EQ(diagnostic(driver, "motor_watchdog"), "armed: a motor brakes 200 ms after its last command");
+}
+
+/// A frame that commands `joint` only; every other motor is left uncommanded.
+driver::CommandFrame one_joint(std::size_t joint, const driver::JointCommand& command) {
+  driver::CommandFrame frame;
+  frame.joint_count = kJoints;
+  frame.joints[joint] = command;
+  return frame;
 }
 
 /// The driver on the simulator's two buses, either transport, optionally with an IMU.
@@ -170,6 +238,15 @@ class HighTorqueDriverTest : public ::testing::TestWithParam<HighTorqueSimProces
     driver_.disconnect();
   }
   nlohmann::json sim_motor(std::size_t bus, int id) const { return sim_.motor_state(bus, id); }
+  std::uint64_t ticks() {
+    return driver_.call("state", nlohmann::json::object()).value()["ticks"].get<std::uint64_t>();
+  }
+  /// Sets `frame` and waits until the loop has written it for at least ten ticks.
+  void command_and_settle(const driver::CommandFrame& frame) {
+    loop_->set_command(frame);
+    const std::uint64_t from = ticks();
+    ASSERT_TRUE(loop_->wait_for([&](DriverLoop& /*l*/) { return ticks() >= from + 20; }));
+  }
   bool sim_ok(const nlohmann::json& request) const { return sim_.control(request)["ok"].get<bool>(); }
 
   HighTorqueSimProcess sim_{links(), {"--quiet"}};
@@ -288,6 +365,83 @@ TEST_P(HighTorqueDriverTest, OpsReachTheMotors) {
   const auto bad = driver_.call("motor_info", {{"motor", "nobody"}});
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().message.find("nobody"), std::string::npos) << bad.error().message;
+}
+
+// reboot_motor is decided by write() from the commands of the tick that would send it: refused
+// while a session owns the motor, while robotd still holds it in a session's fallback, and under
+// the e-stop. A free motor reboots (on a board bus with its whole port) and gets its own
+// watchdog, which a reboot disarms, back.
+TEST_P(HighTorqueDriverTest, ARebootIsDecidedAtTheTickThatWouldSendIt) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  const bool board = GetParam() == HighTorqueSimProcess::Link::Kind::kBoard;
+  const auto refused_with = [&](const std::string& why) {
+    const auto rebooted = driver_.call("reboot_motor", {{"motor", "a1"}});
+    ASSERT_FALSE(rebooted) << why;
+    EXPECT_EQ(rebooted.error().code, ErrorCode::kRefused);
+    EXPECT_NE(rebooted.error().message.find(why), std::string::npos) << rebooted.error().message;
+    EXPECT_EQ(sim_motor(0, 1)["reboots"].get<int>(), 0);
+  };
+  using Kind = driver::JointCommandKind;
+  ASSERT_NO_FATAL_FAILURE(command_and_settle(one_joint(0, {.kind = Kind::kPosition, .owned = true})));
+  refused_with("a1 is held by a session; release it first");
+  ASSERT_NO_FATAL_FAILURE(command_and_settle(one_joint(0, {.kind = Kind::kImpedance, .owned = false, .kd = 1.0})));
+  refused_with("robotd still holds a1 (the KEEP or DAMPING a session left it in)");
+  driver::CommandFrame estop = one_joint(0, {.kind = Kind::kImpedance, .owned = false});
+  estop.estop = true;
+  ASSERT_NO_FATAL_FAILURE(command_and_settle(estop));
+  refused_with("robotd's e-stop brakes every motor");
+  if (board) {
+    ASSERT_NO_FATAL_FAILURE(command_and_settle(one_joint(1, {.kind = Kind::kPosition, .owned = true})));
+    refused_with("a2 is held by a session; release it first (a2 shares a1's board port");
+  }
+
+  // ZERO_TORQUE left a1 free.
+  ASSERT_NO_FATAL_FAILURE(command_and_settle(one_joint(0, {.kind = Kind::kImpedance, .owned = false})));
+  const auto rebooted = driver_.call("reboot_motor", {{"motor", "a1"}});
+  ASSERT_TRUE(rebooted) << rebooted.error().message;
+  EXPECT_EQ(rebooted.value()["rebooted"], board ? nlohmann::json({"a1", "a2", "a3"}) : nlohmann::json({"a1"}));
+  EXPECT_TRUE(rebooted.value()["watchdog_rearmed"].get<bool>()) << rebooted.value().dump();
+  EXPECT_EQ(sim_motor(0, 1)["reboots"].get<int>(), 1);
+  EXPECT_EQ(sim_motor(0, 2)["reboots"].get<int>(), board ? 1 : 0);
+  EXPECT_EQ(sim_motor(1, 1)["reboots"].get<int>(), 0);
+  EXPECT_TRUE(loop_->wait_for([&](DriverLoop& /*l*/) { return sim_motor(0, 1)["timeout_ms"].get<int>() == 200; }))
+      << "the reboot left a1's own watchdog disarmed";
+}
+
+// A reboot the loop does not take in time (robotd pauses it for maintenance) is withdrawn: it is
+// not sent later, when the loop runs again.
+TEST_P(HighTorqueDriverTest, ARebootTheLoopDidNotTakeIsNeverSentLater) {
+  nlohmann::json quick = params();
+  quick["reply_timeout_ms"] = 100;
+  ASSERT_NO_FATAL_FAILURE(bring_up(quick));
+  const auto rebooted = loop_->paused([&] { return driver_.call("reboot_motor", {{"motor", "a1"}}); });
+  ASSERT_FALSE(rebooted);
+  EXPECT_EQ(rebooted.error().code, ErrorCode::kNotAvailable);
+  EXPECT_NE(rebooted.error().message.find("did not take the request within 100 ms"), std::string::npos)
+      << rebooted.error().message;
+  EXPECT_NE(rebooted.error().message.find("nothing was sent"), std::string::npos) << rebooted.error().message;
+  const std::uint64_t from = ticks();
+  ASSERT_TRUE(loop_->wait_for([&](DriverLoop& /*l*/) { return ticks() >= from + 100; }));
+  EXPECT_EQ(sim_motor(0, 1)["reboots"].get<int>(), 0);
+}
+
+// Any client may call set_motor_timeout, so it only sets a watchdog that still brakes the robot:
+// disarming it (0) or a timeout a robot falls through is refused; the config decides that.
+TEST_P(HighTorqueDriverTest, SetMotorTimeoutOnlySetsASafeWatchdog) {
+  ASSERT_NO_FATAL_FAILURE(bring_up(params()));
+  for (const int timeout_ms : {0, 5000}) {
+    const auto refused = driver_.call("set_motor_timeout", {{"timeout_ms", timeout_ms}});
+    ASSERT_FALSE(refused) << timeout_ms;
+    EXPECT_EQ(refused.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(refused.error().message.find("expected an integer in 20..1000"), std::string::npos)
+        << refused.error().message;
+    EXPECT_NE(refused.error().message.find("only through params.motor_timeout_ms"), std::string::npos)
+        << refused.error().message;
+  }
+  EXPECT_EQ(sim_motor(0, 1)["timeout_ms"].get<int>(), 200);
+  EXPECT_EQ(diagnostic(driver_, "motor_timeout_ms"), "200");
+  ASSERT_TRUE(driver_.call("set_motor_timeout", {{"timeout_ms", 300}}));
+  EXPECT_TRUE(loop_->wait_for([&](DriverLoop& /*l*/) { return sim_motor(1, 2)["timeout_ms"].get<int>() == 300; }));
 }
 
 // An e-stop or a shutdown does not wait for maintenance: abort_maintenance() ends a recover() or

@@ -103,6 +103,22 @@ TEST_F(PiperDriverTest, ConfigureRejectsBadParamsWithTheirPath) {
   EXPECT_NE(missing.error().message.find("can"), std::string::npos) << missing.error().message;
 }
 
+// DAMPING and KEEP hold an arm joint with its default gains: 0 would let it go while robotd
+// reports them, so configure() refuses it, naming the joint.
+TEST_F(PiperDriverTest, ConfigureRefusesDefaultGainsThatWouldNotHoldAJoint) {
+  PiperDriver driver;
+  const auto configured = driver.configure(
+      driver_params(sim_.bus_path(), {{"joints", {{"joint3", {{"default_kd", 0}}}, {"joint5", {{"default_kp", 0}}}}}}));
+  ASSERT_FALSE(configured);
+  const std::string& message = configured.error().message;
+  EXPECT_NE(message.find("joints.joint3.default_kd: expected more than 0 for joint3, got 0"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("joints.joint5.default_kp: expected more than 0 for joint5, got 0"), std::string::npos)
+      << message;
+  EXPECT_TRUE(driver.configure(driver_params(sim_.bus_path(), {{"joints", {{"gripper", {{"default_kd", 0}}}}}})))
+      << "the gripper is position-controlled: it has no damping to lose";
+}
+
 // The shipped configs' PiPER params are valid (robotd --check-config cannot see driver params).
 TEST(PiperConfigs, ShippedExamplesAndTheDefaultConfigParse) {
   for (const char* file : {"config/examples/piper.json", "config/examples/piper-sim.json", "config/robotd.json"}) {
