@@ -86,6 +86,7 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
           "device '" + device.model().name + "' is busy (its loop has not taken the last requests); retry";
       return response;
     }
+    active_.add(record.uuid);
     response.success = true;
     response.uuid = record.uuid;
     response.motor_ids = record.motor_ids;
@@ -120,6 +121,7 @@ ReleaseControlResponse SessionService::release_control(const ReleaseControlReque
       return response;
     }
     const session::SessionRecord& record = released.value();
+    active_.remove(record.uuid);
     device::Device& device = *devices_[record.device_index];
     const Behavior applied = control::applied_behavior(request.release_mode, device.model().behaviors);
     device::ControlEvent event;
@@ -182,6 +184,7 @@ std::optional<session::SessionRecord> SessionService::session_ended(std::size_t 
   {
     const std::lock_guard lock(mutex_);
     ended = table_.end(device, slot, generation);
+    if (ended) active_.remove(ended->uuid);
   }
   if (ended) on_change_();
   return ended;
