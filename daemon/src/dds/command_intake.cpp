@@ -19,12 +19,12 @@ constexpr int kCommandHistoryDepth = 64;
 CommandIntake::CommandIntake(const wire::Participant& participant, std::vector<device::Device*> devices,
                              service::SessionService& sessions)
     : participant_(participant), devices_(std::move(devices)), sessions_(sessions), sequence_(devices_.size(), 0) {
-  for (std::size_t i = 0; i < devices_.size(); ++i) {
+  for (const auto* device : devices_) {
     counters_.push_back(std::make_unique<service::CommandCounterSet>());
     working_.push_back(std::make_unique<device::CommandSnapshot>());
     auto& keys = log_keys_.emplace_back();
     for (std::size_t reason = 0; reason < keys.size(); ++reason) {
-      keys[reason] = devices_[i]->model().name + "/" + control::to_string(static_cast<control::Rejection>(reason));
+      keys[reason] = device->model().name + "/" + control::to_string(static_cast<control::Rejection>(reason));
     }
   }
 }
