@@ -99,11 +99,12 @@ def main():
                      result["cpu_cores"], result["overruns"]])
         key = f"flood{flooders}"
         figures.update({f"{key}_owner_fraction": round(fraction, 5), f"{key}_owner_sent": result["owner_sent"],
-                        f"{key}_forged_per_s": result["forged_per_s"], f"{key}_forged_counted_fraction": round(counted, 5),
+                        f"{key}_forged_per_s": result["forged_per_s"],
+                        f"{key}_forged_counted_fraction": round(counted, 5),
                         f"{key}_intake_cpu_us_per_command": cpu["intake"],
                         f"{key}_receive_cpu_us_per_command": cpu["receive"],
-                        f"{key}_robotd_cpu_us_per_command": cpu["process"], f"{key}_robotd_cpu_cores": result["cpu_cores"],
-                        f"{key}_overruns": result["overruns"]})
+                        f"{key}_robotd_cpu_us_per_command": cpu["process"],
+                        f"{key}_robotd_cpu_cores": result["cpu_cores"], f"{key}_overruns": result["overruns"]})
         if fraction < CATASTROPHIC:
             catastrophic.append(f"{flooders} flooders: the owner got {fraction:.3f} of its commands through")
     print(f"command flood: the owner at {OWNER_HZ} Hz for {seconds} s beside N foreign writers at {FLOOD_HZ} Hz each")
