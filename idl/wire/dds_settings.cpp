@@ -90,6 +90,11 @@ std::string to_cyclone_xml(const DdsSettings& settings) {
     xml << "</Peers>";
   }
   xml << "</Discovery>";
+  if (settings.receive_thread_priority > 0) {
+    xml << "<Internal><MultipleReceiveThreads>false</MultipleReceiveThreads></Internal><Threads><Thread Name=\"recv\">"
+        << "<Scheduling><Class>realtime</Class><Priority>" << settings.receive_thread_priority
+        << "</Priority></Scheduling></Thread></Threads>";
+  }
   if (settings.security.enabled()) write_security(xml, settings.security);
   xml << "</Domain></CycloneDDS>";
   return xml.str();

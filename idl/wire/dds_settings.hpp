@@ -17,8 +17,12 @@ struct DdsSettings {
   bool multicast = false;
   std::vector<std::string> peers{"127.0.0.1"};  // unicast discovery peers (needed without multicast)
   int max_participant_index = 120;              // participants per host reachable by unicast discovery
-  std::string cyclonedds_xml;                   // non-empty: used verbatim instead of the fields above
-  DdsSecurityFiles security;                    // any file named: DDS Security on, as the domain's <Security>
+  // > 0: one receive thread for every socket, at SCHED_FIFO this priority, so that busy processes
+  // on the host cannot keep it from draining its sockets (robotd: docs/reliability.md, "Command
+  // flood"). 0: Cyclone's default threads and scheduling.
+  int receive_thread_priority = 0;
+  std::string cyclonedds_xml;  // non-empty: used verbatim instead of the fields above
+  DdsSecurityFiles security;   // any file named: DDS Security on, as the domain's <Security>
 };
 
 /// The Cyclone DDS configuration (XML) for `settings`. Cyclone applies it, DDS Security

@@ -62,9 +62,18 @@ class TopicWriter {
 template <class T>
 class TopicReader {
  public:
-  static Result<TopicReader> create(const Participant& participant, std::string_view name, const dds_qos_t* qos) {
+  /// With `filter`, Cyclone calls it for each arriving sample on its receive thread; a sample it
+  /// refuses is acknowledged and dropped before it takes a place in the reader's history.
+  static Result<TopicReader> create(const Participant& participant, std::string_view name, const dds_qos_t* qos,
+                                    const dds_topic_filter* filter = nullptr) {
     auto topic = create_topic<T>(participant, name);
     if (!topic) return topic.error();
+    // The topic entity is this reader's own, so the filter is set before the reader exists.
+    if (filter != nullptr) {
+      if (const dds_return_t rc = dds_set_topic_filter_extended(topic.value().get(), filter); rc < 0) {
+        return dds_failure("set a DDS topic filter", name, rc);
+      }
+    }
     const dds_entity_t reader = dds_create_reader(participant.handle(), topic.value().get(), qos, nullptr);
     if (reader < 0) return dds_failure("create a DDS reader", name, reader);
     return TopicReader(std::move(topic.value()), Entity(reader));

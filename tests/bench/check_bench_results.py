@@ -19,6 +19,9 @@ REQUIRED = [
     "scale1_worst_wake_p99_us", "scale4_worst_wake_p99_us", "scale8_worst_wake_p99_us", "humanoid_worst_wake_p99_us",
     "scale8_overruns_per_min", "scale8_late_per_min", "scale8_baseline_late_per_min", "scale8_robotd_cpu_cores",
     "tick_ns_6", "tick_ns_23", "tick_instructions_6", "tick_instructions_23",
+    *(f"flood{n}_{figure}" for n in (0, 1, 8, 32)
+      for figure in ("owner_fraction", "forged_counted_fraction", "intake_cpu_us_per_command",
+                     "receive_cpu_us_per_command", "robotd_cpu_us_per_command")),
 ]
 
 

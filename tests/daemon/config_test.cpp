@@ -121,6 +121,24 @@ TEST(Config, CpuWakeUpLatencyRequestDefaultsToZeroAndMinusOneTurnsItOff) {
             std::string::npos);
 }
 
+TEST(Config, DdsReceiveThreadPriorityDefaultsBelowTheLoopsAndZeroTurnsItOff) {
+  EXPECT_EQ(parse(minimal_config()).value().dds.receive_thread_priority, kDefaultReceiveThreadPriority);
+  json document = minimal_config();
+  document["dds"]["receive_thread_priority"] = 0;
+  EXPECT_EQ(parse(document).value().dds.receive_thread_priority, 0);
+  document["dds"]["receive_thread_priority"] = 99;
+  EXPECT_THAT(errors_of(document), HasSubstr("dds.receive_thread_priority: expected an integer in 0..98, got 99"));
+}
+
+TEST(Config, ALoopMustOutrankTheDdsReceiveThread) {
+  json document = minimal_config();
+  document["dds"]["receive_thread_priority"] = 40;
+  document["devices"][0]["rt_priority"] = 40;
+  EXPECT_THAT(errors_of(document), HasSubstr("devices[0].rt_priority: must be above dds.receive_thread_priority (40)"));
+  document["devices"][0]["realtime"] = "off";
+  EXPECT_TRUE(parse(document).ok()) << "a loop that is not real-time has no priority to compare";
+}
+
 TEST(Config, LineAndBlockCommentsAreAllowed) {
   const std::string text = R"(
     // robotd test config

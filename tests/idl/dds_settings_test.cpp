@@ -4,8 +4,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sched.h>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -107,6 +110,15 @@ TEST(ToCycloneXml, RelativeSecurityPathsBecomeAbsolute) {
               HasSubstr("<IdentityCA>file:" + std::filesystem::current_path().string() + "/pki/identity_ca.pem<"));
 }
 
+TEST(ToCycloneXml, ReceiveThreadPriorityGivesOneRealtimeReceiveThread) {
+  DdsSettings settings;
+  settings.receive_thread_priority = 7;
+  const std::string xml = to_cyclone_xml(settings);
+  EXPECT_THAT(xml, HasSubstr("<MultipleReceiveThreads>false</MultipleReceiveThreads>"));
+  EXPECT_THAT(xml, HasSubstr("<Thread Name=\"recv\"><Scheduling><Class>realtime</Class><Priority>7</Priority>"));
+  EXPECT_THAT(to_cyclone_xml(DdsSettings{}), Not(HasSubstr("<Threads>")));
+}
+
 TEST(ToCycloneXml, NoSecurityFilesNoSecuritySection) {
   EXPECT_THAT(to_cyclone_xml(DdsSettings{}), Not(HasSubstr("Security")));
 }
@@ -179,6 +191,29 @@ TEST(Participant, RejectsDomainIdOutOfRange) {
   const auto participant = Participant::create(settings);
   ASSERT_FALSE(participant);
   EXPECT_EQ(participant.error().code, ErrorCode::kInvalidArgument);
+}
+
+TEST(Participant, ReceiveThreadPriorityPutsCyclonesReceiveThreadOnSchedFifo) {
+  if (geteuid() != 0) GTEST_SKIP() << "SCHED_FIFO needs root here";
+  const testing::PrivateDomain domain;
+  DdsSettings settings = domain.settings();
+  settings.receive_thread_priority = 3;
+  auto participant = Participant::create(settings);
+  ASSERT_TRUE(participant) << participant.error().message;
+  std::vector<std::string> receive_threads;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream comm(task.path() / "comm");
+    std::string name;
+    std::getline(comm, name);
+    if (!name.starts_with("recv")) continue;
+    receive_threads.push_back(name);
+    const auto tid = static_cast<pid_t>(std::stol(task.path().filename().string()));
+    sched_param param{};
+    EXPECT_EQ(sched_getscheduler(tid), SCHED_FIFO) << name;
+    ASSERT_EQ(sched_getparam(tid, &param), 0);
+    EXPECT_EQ(param.sched_priority, 3) << name;
+  }
+  EXPECT_EQ(receive_threads, std::vector<std::string>{"recv"}) << "one receive thread for every socket";
 }
 
 TEST(Participant, MissingInterfaceIsAnErrorNamingIt) {

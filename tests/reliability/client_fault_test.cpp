@@ -2,6 +2,7 @@
 // command flood from eight intruders at 10 kHz each beside the session's owner, a client that
 // takes motors and never commands nor releases them, and malformed service requests. Each prints
 // what it measured ("[ measured ]", docs/reliability.md).
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -100,15 +101,24 @@ TEST_F(ClientFaultTest, AFrozenClientsSessionFallsBackAndItsCommandsAreRejectedW
             << " commands in 500 ms rejected as unknown session\n";
 }
 
-// Eight intruders each try 10 kHz of commands under a uuid robotd never gave out while the
-// owner streams at 1 kHz: the loop keeps its period, the owner's commands get through, every
-// intruder's command that arrives is rejected and counted.
+// Eight intruders each try 10 kHz of commands under a uuid robotd never gave out, all to 1.0 rad,
+// while the owner streams at 1 kHz a target 0.3 rad below where the arm was: the owner keeps its
+// session and the arm goes to the owner's target and nowhere else; every command that reached
+// robotd is counted, each intruder's as an unknown session; the device stays RUNNING. A
+// functional check: the share of the owner's commands that get through a flood, and its cost,
+// are bench/flood.py's figures (docs/performance.md).
 TEST_F(ClientFaultTest, AFloodOfForeignCommandsLeavesTheLoopAndTheOwnerAlone) {
   constexpr int kFloodSeconds = 3;
-  auto owner = streamer({"--timeout-ms", "1000", "--seconds", std::to_string(kFloodSeconds + 1)});
-  ASSERT_TRUE(owner->read_line(10s).value_or("").rfind("uuid ", 0) == 0);
+  constexpr double kOwnerOffsetRad = -0.3;
+  constexpr double kToleranceRad = 0.02;
+  const std::vector<double> start = joint_state().position;
   const DeviceStatus before = device_status();
   ASSERT_TRUE(client().device_call("arm", "loop_timing", R"({"reset": true})"));
+  auto owner = streamer({"--timeout-ms", "1000", "--seconds", std::to_string(kFloodSeconds + 2), "--offset",
+                         std::to_string(kOwnerOffsetRad)});
+  const auto uuid_line = owner->read_line(10s);
+  ASSERT_TRUE(uuid_line && uuid_line->rfind("uuid ", 0) == 0) << uuid_line.value_or("(nothing)");
+  const std::string owner_uuid = uuid_line->substr(5);
   constexpr int kIntruders = 8;
   std::vector<std::unique_ptr<ChildProcess>> intruders;
   intruders.reserve(kIntruders);
@@ -116,23 +126,42 @@ TEST_F(ClientFaultTest, AFloodOfForeignCommandsLeavesTheLoopAndTheOwnerAlone) {
     intruders.push_back(streamer({"--uuid", kNeverGivenOut, "--rate", "10000", "--seconds",
                                   std::to_string(kFloodSeconds), "--position", "1.0"}));
   }
+
+  // Through the flood, no joint passes the owner's target towards the intruders' 1.0 rad.
+  double beyond_owner_rad = 0;
+  for (const auto flood_end = std::chrono::steady_clock::now() + std::chrono::seconds(kFloodSeconds);
+       std::chrono::steady_clock::now() < flood_end;) {
+    const JointState state = joint_state();
+    for (std::size_t j = 0; j < start.size(); ++j) {
+      beyond_owner_rad = std::max(beyond_owner_rad, state.position[j] - std::max(start[j], start[j] + kOwnerOffsetRad));
+    }
+  }
+  const auto sessions = client().session_status(1s);
+  ASSERT_TRUE(sessions) << sessions.error().message;
+  EXPECT_EQ(sessions.value().active_uuids, std::vector<std::string>{owner_uuid}) << "the owner lost its session";
+  const JointState during = joint_state();
+  for (std::size_t j = 0; j < start.size(); ++j) {
+    EXPECT_NEAR(during.position[j], start[j] + kOwnerOffsetRad, kToleranceRad) << "joint " << j << " (owner's target)";
+  }
+  EXPECT_LT(beyond_owner_rad, kToleranceRad) << "a forged command moved the arm";
+
   std::uint64_t forged = 0;
   for (auto& intruder : intruders) forged += sent_by(*intruder);
-  const std::uint64_t owned = sent_by(*owner);
+  const std::uint64_t owned = sent_by(*owner);  // the owner has stopped: the counters stand still
   const DeviceStatus after = device_status();
-
+  const auto received = after.commands.received - before.commands.received;
   const auto accepted = after.commands.accepted - before.commands.accepted;
   const auto rejected = after.commands.rejected_unknown_session - before.commands.rejected_unknown_session;
-  const auto overruns = after.loop.overruns - before.loop.overruns;
   std::cout << "[ measured ] flood: 8 intruders sent " << forged << " commands in " << kFloodSeconds << " s ("
             << forged / kFloodSeconds << "/s), " << rejected << " reached robotd and were rejected as unknown session; "
             << "owner sent " << owned << ", " << accepted << " accepted; arm loop period p99 "
-            << after.loop.period_p99_us << " µs, max " << after.loop.period_max_us << " µs, overruns " << overruns
-            << "\n";
-  EXPECT_GT(forged, 8U * 3000U * kFloodSeconds) << "the flood was not a flood";
-  EXPECT_GT(rejected, forged / 2) << "most forged commands should reach robotd and be counted";
-  EXPECT_GE(accepted, owned * 95 / 100) << "the owner's commands were crowded out";
-  EXPECT_LE(overruns, 10U) << "the loop lost its period under the flood";
+            << after.loop.period_p99_us << " µs, max " << after.loop.period_max_us << " µs, overruns "
+            << after.loop.overruns - before.loop.overruns << "\n";
+  EXPECT_GT(rejected, 0U) << "no forged command reached robotd: the flood was not a flood";
+  EXPECT_LE(rejected, forged);
+  EXPECT_GT(accepted, 0U);
+  EXPECT_LE(accepted, owned);
+  EXPECT_EQ(received, accepted + rejected) << "a command was received but neither accepted nor counted as rejected";
   EXPECT_EQ(after.state, DeviceState::kRunning);
 }
 

@@ -1,6 +1,7 @@
 // A client in its own process for tests that kill a client: acquires a session, prints
-// "uuid <uuid>", then streams position commands holding the arm at its current position at
-// --rate Hz until it is killed (or for --seconds, then prints "sent <n>"). With --uuid it requests nothing and streams
+// "uuid <uuid>", then streams position commands holding the arm at its current position (plus
+// --offset) at --rate Hz until it is killed (or for --seconds, then prints "sent <n>"). With --uuid it requests nothing
+// and streams
 // --position to every motor in the name of that session instead, as a client that learned another's uuid would: it
 // prints "streaming" once a command is written, or "failed <why>" if none can be. It connects as
 // ClientOptions::from_environment() says (ROBOTD_DDS_SECURITY_* included).
@@ -50,7 +51,7 @@ int stream_in_the_name_of(robotd::Client& client, const std::string& uuid, const
 }
 
 int hold_a_session(robotd::Client& client, const std::string& device, const std::string& on_timeout, int timeout_ms,
-                   Clock::duration period, double seconds) {
+                   float offset_rad, Clock::duration period, double seconds) {
   const auto behavior = robotd::parse_behavior(on_timeout);
   if (!behavior) return 2;
   robotd::SessionRequest request;
@@ -68,7 +69,7 @@ int hold_a_session(robotd::Client& client, const std::string& device, const std:
   }
   std::vector<float> hold;
   for (const auto id : session.value().motor_ids()) {
-    hold.push_back(static_cast<float>(state.value().position[static_cast<std::size_t>(id)]));
+    hold.push_back(static_cast<float>(state.value().position[static_cast<std::size_t>(id)]) + offset_rad);
   }
   std::printf("uuid %s\n", session.value().uuid().c_str());
   std::fflush(stdout);
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
   std::string uuid;
   int motors = 6;
   float position_rad = 0;
+  float offset_rad = 0;
   app.add_option("--domain", domain)->required();
   app.add_option("--device", device);
   app.add_option("--timeout-ms", timeout_ms);
@@ -97,6 +99,7 @@ int main(int argc, char** argv) {
   app.add_option("--uuid", uuid, "stream in the name of this session instead of requesting one");
   app.add_option("--motors", motors, "with --uuid: command motors 0..N-1");
   app.add_option("--position", position_rad, "with --uuid: the position commanded to every motor, rad");
+  app.add_option("--offset", offset_rad, "with a session: command the positions found at the start plus this, rad");
   CLI11_PARSE(app, argc, argv);
 
   robotd::ClientOptions options = robotd::ClientOptions::from_environment();
@@ -109,5 +112,5 @@ int main(int argc, char** argv) {
   }
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
   if (!uuid.empty()) return stream_in_the_name_of(client.value(), uuid, device, motors, position_rad, period, seconds);
-  return hold_a_session(client.value(), device, on_timeout, timeout_ms, period, seconds);
+  return hold_a_session(client.value(), device, on_timeout, timeout_ms, offset_rad, period, seconds);
 }

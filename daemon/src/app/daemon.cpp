@@ -45,6 +45,12 @@ Result<void> Daemon::start() {
       spdlog::warn("{}", failure);
     }
   }
+  if (config_.dds.receive_thread_priority > 0 && !environment.can_use_fifo) {
+    spdlog::warn(
+        "DDS receive thread: SCHED_FIFO not permitted, so it runs SCHED_OTHER: busy processes on this "
+        "machine can keep it from draining its sockets, and commands are then lost (docs/reliability.md)");
+    config_.dds.receive_thread_priority = 0;
+  }
   if (config_.daemon.cpu_dma_latency_us >= 0) {
     auto request = rt::CpuLatencyRequest::hold(config_.daemon.cpu_dma_latency_us);
     if (request) {
@@ -160,7 +166,10 @@ Result<void> Daemon::start_dds() {
       config_.dds.cyclonedds_xml.empty()
           ? "interface " +
                 (config_.dds.network_interface.empty() ? std::string("(auto)") : config_.dds.network_interface) +
-                (config_.dds.multicast ? ", multicast" : ", no multicast")
+                (config_.dds.multicast ? ", multicast" : ", no multicast") +
+                (config_.dds.receive_thread_priority > 0
+                     ? ", receive thread SCHED_FIFO " + std::to_string(config_.dds.receive_thread_priority)
+                     : std::string(", receive threads SCHED_OTHER"))
           : std::string("custom Cyclone DDS XML"));
   return {};
 }

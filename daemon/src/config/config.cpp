@@ -60,6 +60,8 @@ void read_dds(JsonReader& reader, wire::DdsSettings& dds) {
   if (auto peers = reader.string_array("peers")) dds.peers = *peers;
   dds.max_participant_index =
       static_cast<int>(reader.integer_or("max_participant_index", dds.max_participant_index, 1, 1000));
+  dds.receive_thread_priority =
+      static_cast<int>(reader.integer_or("receive_thread_priority", dds.receive_thread_priority, 0, 98));
   dds.cyclonedds_xml = reader.string_or("cyclonedds_xml", "");
   if (auto security = reader.object("security")) read_dds_security(*security, dds.security);
   if (reader.has("security") && !dds.cyclonedds_xml.empty()) {
@@ -155,6 +157,7 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
   Config config;
   config.origin = origin;
   JsonReader root(*document, "", errors);
+  config.dds.receive_thread_priority = kDefaultReceiveThreadPriority;
   if (auto daemon = root.object("daemon")) read_daemon(*daemon, config.daemon);
   if (auto dds = root.object("dds")) read_dds(*dds, config.dds);
   if (auto joystick = root.object("joystick")) {
@@ -167,6 +170,11 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
     DeviceConfig device = read_device(reader, cpu_count);
     if (!device.name.empty() && !names.insert(device.name).second) {
       reader.error("name", "duplicate device name \"" + device.name + "\"");
+    }
+    if (device.realtime != rt::RealtimePolicy::kOff && device.rt_priority <= config.dds.receive_thread_priority) {
+      reader.error("rt_priority", "must be above dds.receive_thread_priority (" +
+                                      std::to_string(config.dds.receive_thread_priority) +
+                                      "): the loop must preempt DDS's receive thread");
     }
     config.devices.push_back(std::move(device));
   }

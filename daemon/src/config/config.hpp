@@ -66,6 +66,10 @@ struct DaemonConfig {
   bool yesense_imu_topics = true;       // also publish /imu as the PI Plus /yesense_imu/* topics
 };
 
+/// robotd's DDS receive thread runs at this SCHED_FIFO priority unless `dds.receive_thread_priority`
+/// says otherwise: below every loop, above every ordinary process (docs/configuration.md).
+inline constexpr int kDefaultReceiveThreadPriority = 10;
+
 struct Config {
   std::string origin;  // file path, for messages
   DaemonConfig daemon;

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "device/command_admission.hpp"
 #include "rt/monotonic_clock.hpp"
 #include "session/session_uuid.hpp"
 #include "wire/qos.hpp"
@@ -10,7 +11,8 @@
 namespace robotd::dds {
 namespace {
 
-// Deep enough that bursts from several sessions at 1 kHz are not lost before intake runs.
+// Deep enough that bursts from several sessions at 1 kHz are not lost before intake runs. Only
+// active sessions' commands take a place (admits()).
 constexpr int kCommandHistoryDepth = 64;
 
 }  // namespace
@@ -21,14 +23,22 @@ CommandIntake::CommandIntake(const wire::Participant& participant, std::vector<d
   for (device::Device* device : devices_) {
     counters_.push_back(std::make_unique<service::CommandCounterSet>());
     mailboxes_.push_back(std::make_unique<device::CommandMailbox>(device->channel()));
+    auto& keys = log_keys_.emplace_back();
+    for (std::size_t reason = 0; reason < keys.size(); ++reason) {
+      keys[reason] = device->model().name + "/" + control::to_string(static_cast<control::Rejection>(reason));
+    }
   }
 }
 
-CommandIntake::~CommandIntake() { stop(); }
+CommandIntake::~CommandIntake() {
+  stop();
+  reader_.reset();  // first: until the reader is gone, Cyclone may call admits() on this object
+}
 
 Result<void> CommandIntake::start() {
   auto qos = wire::reliable_qos(kCommandHistoryDepth);
-  auto reader = wire::TopicReader<ControlCommand>::create(participant_, wire::kControlCommandTopic, qos.get());
+  const dds_topic_filter filter{.mode = DDS_TOPIC_FILTER_SAMPLE_ARG, .f = {.sample_arg = &admits}, .arg = this};
+  auto reader = wire::TopicReader<ControlCommand>::create(participant_, wire::kControlCommandTopic, qos.get(), &filter);
   if (!reader) return reader.error();
   reader_ = std::make_unique<wire::TopicReader<ControlCommand>>(std::move(reader.value()));
   waitset_ = wire::Entity(dds_create_waitset(participant_.handle()));
@@ -56,29 +66,48 @@ void CommandIntake::run() {
   }
 }
 
-void CommandIntake::reject(std::size_t device, control::Rejection reason, const ControlCommand& command,
-                           const std::string& detail) {
+bool CommandIntake::admits(const void* sample, void* intake) {
+  const auto& command = *static_cast<const wire::Wire<ControlCommand>::C*>(sample);
+  auto& self = *static_cast<CommandIntake*>(intake);
+  const std::string_view uuid = command.uuid != nullptr ? command.uuid : "";
+  if (self.sessions_.is_active(uuid)) return true;
+  try {
+    self.reject_unknown_session(uuid, command.device != nullptr ? command.device : "");
+  } catch (const std::exception&) {
+    return false;  // counted before the log line that failed; no exception may reach Cyclone
+  }
+  return false;
+}
+
+void CommandIntake::reject_unknown_session(std::string_view uuid, std::string_view device_name) {
+  // Count it against the device the command names, or the only device; otherwise it cannot be
+  // attributed to any device's counters.
+  const auto device = sessions_.find_device(device_name);
+  if (!device) {
+    log_.warn("unattributed", [uuid] {
+      return "rejected command: session " + session::redacted_uuid(uuid) +
+             " is not active and the command names no known device";
+    });
+    return;
+  }
+  counters_[*device]->received.fetch_add(1, std::memory_order_relaxed);
+  reject(*device, control::Rejection::kUnknownSession, uuid,
+         "no active session has this uuid (request_control first; sessions end on timeout)");
+}
+
+void CommandIntake::reject(std::size_t device, control::Rejection reason, std::string_view uuid,
+                           std::string_view detail) {
   counters_[device]->count_rejection(reason);
-  log_.warn(devices_[device]->model().name + "/" + control::to_string(reason),
-            "rejected command on '" + devices_[device]->model().name + "' (" + control::to_string(reason) +
-                "): " + detail + " [session " + session::redacted_uuid(command.uuid) + "]");
+  log_.warn(log_keys_[device][static_cast<std::size_t>(reason)], [&] {
+    return "rejected command on '" + devices_[device]->model().name + "' (" + control::to_string(reason) +
+           "): " + std::string(detail) + " [session " + session::redacted_uuid(uuid) + "]";
+  });
 }
 
 void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   const auto session = sessions_.authorize(command.uuid);
-  if (!session) {
-    // Count it against the device the command names, or the only device; otherwise it
-    // cannot be attributed to any device's counters.
-    std::size_t device = devices_.size();
-    if (auto named = sessions_.resolve_device(command.device)) device = named.value();
-    if (device == devices_.size()) {
-      log_.warn("unattributed", "rejected command: session " + session::redacted_uuid(command.uuid) +
-                                    " is not active and the command names no known device");
-      return;
-    }
-    counters_[device]->received.fetch_add(1, std::memory_order_relaxed);
-    reject(device, control::Rejection::kUnknownSession, command,
-           "no active session has this uuid (request_control first; sessions end on timeout)");
+  if (!session) {  // its session ended after admits() let it through
+    reject_unknown_session(command.uuid, command.device);
     return;
   }
 
@@ -87,21 +116,15 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   service::CommandCounterSet& counters = *counters_[device_index];
   counters.received.fetch_add(1, std::memory_order_relaxed);
 
-  const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
-  if (state == DeviceState::kEstop) {
-    reject(device_index, control::Rejection::kEstop, command, "device is e-stopped; reset the e-stop first");
-    return;
-  }
-  if (state != DeviceState::kRunning) {
-    reject(device_index, control::Rejection::kFault, command,
-           "device is " + std::string(to_string(state)) + ", not RUNNING");
+  if (const auto refusal = device::command_refusal(device.channel())) {
+    reject(device_index, refusal->reason, command.uuid, refusal->detail);
     return;
   }
 
   const control::SessionView view{device.model().name, session->mode, session->motors};
   const control::Verdict verdict = control::validate_command(command, view, device.model(), validated_);
   if (verdict.rejection) {
-    reject(device_index, *verdict.rejection, command, verdict.detail);
+    reject(device_index, *verdict.rejection, command.uuid, verdict.detail);
     return;
   }
 

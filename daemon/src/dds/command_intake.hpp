@@ -1,11 +1,17 @@
 // The /control_command path: one thread takes every command sample, checks it against its
 // session and the device (command_validator), counts the verdict and, if accepted, writes the
 // targets into the device's command mailbox for the RT loop. Rejected commands never get
-// further than this.
+// further than this. A command under no active session's uuid is counted and dropped before
+// that, as it arrives (a topic filter on Cyclone's receive thread): a flood of them takes no
+// place in the reader's history, so it cannot push out a session's commands, and it never wakes
+// the intake thread (docs/reliability.md, "Command flood").
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -37,12 +43,17 @@ class CommandIntake {
 
  private:
   void run();
-  void reject(std::size_t device, control::Rejection reason, const ControlCommand& command, const std::string& detail);
+  /// The topic filter: true for a command under an active session's uuid; any other is
+  /// rejected here. Runs on Cyclone's receive thread.
+  static bool admits(const void* sample, void* intake);
+  void reject_unknown_session(std::string_view uuid, std::string_view device_name);
+  void reject(std::size_t device, control::Rejection reason, std::string_view uuid, std::string_view detail);
 
   const wire::Participant& participant_;
   std::vector<device::Device*> devices_;
   service::SessionService& sessions_;
   std::vector<std::unique_ptr<service::CommandCounterSet>> counters_;
+  std::vector<std::array<std::string, control::kRejectionCount>> log_keys_;  // "<device>/<reason>"
   std::vector<std::unique_ptr<device::CommandMailbox>> mailboxes_;
   control::ValidatedCommand validated_;
 

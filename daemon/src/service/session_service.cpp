@@ -67,6 +67,7 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
           "device '" + device.model().name + "' is busy (its loop has not taken the last requests); retry";
       return response;
     }
+    active_.add(record.uuid);
     response.success = true;
     response.uuid = record.uuid;
     response.motor_ids = record.motor_ids;
@@ -101,6 +102,7 @@ ReleaseControlResponse SessionService::release_control(const ReleaseControlReque
       return response;
     }
     const session::SessionRecord& record = released.value();
+    active_.remove(record.uuid);
     device::Device& device = *devices_[record.device_index];
     const Behavior applied = control::applied_behavior(request.release_mode, device.model().behaviors);
     if (!device.channel().post(session_release_event(record, applied))) {
@@ -158,6 +160,7 @@ std::optional<session::SessionRecord> SessionService::session_ended(std::size_t 
   {
     const std::lock_guard lock(mutex_);
     ended = table_.end(device, slot, generation);
+    if (ended) active_.remove(ended->uuid);
   }
   if (ended) on_change_();
   return ended;

@@ -14,6 +14,7 @@
 #include "control/command_validator.hpp"
 #include "device/device.hpp"
 #include "robotd/messages.hpp"
+#include "session/active_uuids.hpp"
 #include "session/session_table.hpp"
 
 namespace robotd::service {
@@ -38,18 +39,25 @@ class SessionService {
   std::optional<Authorization> authorize(std::string_view uuid);
   /// Records an accepted command: renews the session's timeout clock for time_left.
   void note_command(std::string_view uuid, std::int64_t now_ns);
+  /// Whether `uuid` names an active session. Never waits on the session lock, allocates nothing:
+  /// safe on Cyclone's receive thread for every command.
+  bool is_active(std::string_view uuid) const { return active_.contains(uuid); }
 
   /// The loop ended a session (timeout, release, shutdown). Returns it if it was still known.
   std::optional<session::SessionRecord> session_ended(std::size_t device, std::uint8_t slot, std::uint32_t generation);
 
   bool any_active(std::size_t device) const;
   Result<std::size_t> resolve_device(std::string_view name) const;
+  /// The device `name` names ("": the only one), if any. The devices never change: no lock, no
+  /// allocation.
+  std::optional<std::size_t> find_device(std::string_view name) const { return table_.find_device(name); }
   SessionStatus status(std::int64_t now_ns) const;
 
  private:
   std::vector<device::Device*> devices_;
   mutable std::mutex mutex_;
   session::SessionTable table_;
+  session::ActiveUuids active_;  // the uuids in table_, for is_active()
   std::function<void()> on_change_;
 };
 

@@ -46,16 +46,19 @@ std::int64_t SessionRecord::time_left_ms(std::int64_t now_ns) const {
 SessionTable::SessionTable(std::vector<const control::DeviceModel*> devices, SessionLimits limits)
     : devices_(std::move(devices)), limits_(limits), sessions_(devices_.size()) {}
 
-Result<std::size_t> SessionTable::resolve_device(std::string_view name) const {
-  std::string known;
-  for (const auto* device : devices_) known += (known.empty() ? "'" : ", '") + device->name + "'";
-  if (name.empty()) {
-    if (devices_.size() == 1) return std::size_t{0};
-    return refused("no device named: this robotd serves " + known + "; say which one");
-  }
+std::optional<std::size_t> SessionTable::find_device(std::string_view name) const {
+  if (name.empty()) return devices_.size() == 1 ? std::optional<std::size_t>(0) : std::nullopt;
   for (std::size_t i = 0; i < devices_.size(); ++i) {
     if (devices_[i]->name == name) return i;
   }
+  return std::nullopt;
+}
+
+Result<std::size_t> SessionTable::resolve_device(std::string_view name) const {
+  if (auto found = find_device(name)) return *found;
+  std::string known;
+  for (const auto* device : devices_) known += (known.empty() ? "'" : ", '") + device->name + "'";
+  if (name.empty()) return refused("no device named: this robotd serves " + known + "; say which one");
   return refused("unknown device '" + std::string(name) + "' (this robotd serves " + known + ")");
 }
 

@@ -53,6 +53,8 @@ class SessionTable {
 
   /// Device index for `name`; "" means the only device. Error text lists the devices.
   Result<std::size_t> resolve_device(std::string_view name) const;
+  /// The same without the error text: allocates nothing.
+  std::optional<std::size_t> find_device(std::string_view name) const;
 
   /// Grants `request` if it is valid and its motors are free. `uuid` is the new session's id.
   Result<SessionRecord> grant(const RequestControlRequest& request, std::string uuid, std::int64_t now_ns,
