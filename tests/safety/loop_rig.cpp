@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "control/behavior_map.hpp"
+#include "device/command_admission.hpp"
 #include "service/session_events.hpp"
 
 namespace robotd::safety {
@@ -297,8 +298,7 @@ class LoopRig {
 
     // CommandIntake::handle: the session, then the device's state, then the validator.
     const session::SessionRecord* record = sessions_.find(command.uuid);
-    const DeviceState state = channel_->device_state.load();
-    if (record == nullptr || state != DeviceState::kRunning) {
+    if (record == nullptr || device::command_refusal(*channel_)) {
       ++rejected_;
       if (record == nullptr) ++rejected_unknown_;
       return;

@@ -219,6 +219,9 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
       push(zero);
     }
 
+    // SIGTERM, now and then in the middle of everything (the scenario ends with the shutdown stop).
+    if (dice.chance(0.00005)) break;
+
     // The next tick, usually on time; sometimes late, now and then stalled for many periods.
     Event tick;
     if (dice.chance(0.01)) {
@@ -235,7 +238,7 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
     }
     ++elapsed;
   }
-  if (dice.chance(0.5)) {
+  if (elapsed < ticks || dice.chance(0.5)) {
     push(Event{.kind = Event::Kind::kShutdown});
     Event tail;
     tail.count = spec.shutdown_ms + 5;

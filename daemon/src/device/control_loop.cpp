@@ -286,7 +286,7 @@ void ControlLoop::update_estop(std::int64_t now_ns) noexcept {
     enter_safe_state();
     event.type = LoopEvent::Type::kEstopApplied;
   } else {
-    channel_.estop_reached.store(false, std::memory_order_release);
+    channel_.estop_reached_ns.store(0, std::memory_order_release);
     event.type = LoopEvent::Type::kEstopCleared;
   }
   post(event);
@@ -503,8 +503,8 @@ void ControlLoop::write_command(std::int64_t deadline_ns, std::int64_t now_ns) n
   const driver::IoResult result = driver_.write(frame_, io_fault_);
   if (is_link_problem(result)) {
     latch_io_fault(result, now_ns);
-  } else if (estop_applied_ && !channel_.estop_reached.load(std::memory_order_relaxed)) {
-    channel_.estop_reached.store(true, std::memory_order_release);
+  } else if (estop_applied_ && channel_.estop_reached_ns.load(std::memory_order_relaxed) == 0) {
+    channel_.estop_reached_ns.store(rt::monotonic_now_ns(), std::memory_order_release);
   }
 }
 

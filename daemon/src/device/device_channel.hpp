@@ -137,7 +137,8 @@ struct DeviceChannel {
 
   std::atomic<bool> estop{false};
   std::atomic<bool> estop_input_pressed{false};  // RT → services: the device's e-stop input, now
-  std::atomic<bool> estop_reached{false};        // RT → services: an e-stop frame was written since the engagement
+  std::atomic<std::int64_t> estop_reached_ns{0};  // RT → services: when the first e-stop frame since the
+                                                  // engagement reached the driver (CLOCK_MONOTONIC), 0 = not yet
   std::atomic<bool> maintenance_requested{false};
   std::atomic<bool> maintenance_active{false};    // RT ack: no driver I/O until cleared
   std::atomic<bool> maintenance_declined{false};  // RT: not begun, an e-stop or shutdown is pending

@@ -1,6 +1,8 @@
 #include "service/device_services.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -13,8 +15,24 @@ namespace robotd::service {
 namespace {
 
 constexpr double kZeroTolerance_rad = 0.1;  // PI Plus: zeroing succeeded when every motor reads within 0.1 rad
+// How long /estop waits for each device's loop to confirm it wrote the e-stop frame: a few
+// ticks, and the time an e-stop takes to pre-empt maintenance.
+constexpr auto kEstopConfirmation = std::chrono::milliseconds(50);
 
 DeviceCallResponse call_failed(std::string message) { return DeviceCallResponse{false, std::move(message), ""}; }
+
+// Holds a device's maintenance reservation (SessionService::reserve_for_maintenance) for a scope.
+class MaintenanceReservation {
+ public:
+  MaintenanceReservation(SessionService& sessions, std::size_t device) : sessions_(sessions), device_(device) {}
+  MaintenanceReservation(const MaintenanceReservation&) = delete;
+  MaintenanceReservation& operator=(const MaintenanceReservation&) = delete;
+  ~MaintenanceReservation() { sessions_.end_maintenance(device_); }
+
+ private:
+  SessionService& sessions_;
+  std::size_t device_;
+};
 
 }  // namespace
 
@@ -68,41 +86,77 @@ ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*req
 }
 
 EstopResponse DeviceServices::estop(const EstopRequest& request) {
-  std::vector<device::Device*> targets;
+  std::vector<std::size_t> targets;
   if (request.device.empty()) {
-    targets = devices_;
+    for (std::size_t i = 0; i < devices_.size(); ++i) targets.push_back(i);
   } else {
     auto index = sessions_.resolve_device(request.device);
     if (!index) return EstopResponse{false, index.error().message};
-    targets.push_back(devices_[index.value()]);
+    targets.push_back(index.value());
   }
   const std::string who = request.node_name.empty() ? "(unnamed)" : request.node_name;
   if (!request.engage) {
-    for (device::Device* device : targets) {
-      if (device->channel().estop_input_pressed.load(std::memory_order_acquire)) {
-        return EstopResponse{false, "cannot reset the e-stop of '" + device->model().name +
+    for (const std::size_t i : targets) {
+      if (devices_[i]->channel().estop_input_pressed.load(std::memory_order_acquire)) {
+        return EstopResponse{false, "cannot reset the e-stop of '" + devices_[i]->model().name +
                                         "': its own e-stop input is still pressed; release the button first"};
       }
     }
+    std::string names;
+    for (const std::size_t i : targets) {
+      names += (names.empty() ? "'" : ", '") + devices_[i]->model().name + "'";
+      devices_[i]->channel().estop.store(false, std::memory_order_release);
+      devices_[i]->set_estop_note("");
+    }
+    const std::string message = "e-stop reset on " + names + " by '" + who + "'";
+    spdlog::info("{}", message);
+    return EstopResponse{true, message};
   }
-  std::string names;
-  for (device::Device* device : targets) {
-    names += (names.empty() ? "'" : ", '") + device->model().name + "'";
-    if (request.engage) {
-      device->set_estop_note("engaged by '" + who + "'" + (request.reason.empty() ? "" : ": " + request.reason));
-      device->channel().estop.store(true, std::memory_order_release);
+
+  const std::int64_t engaged_ns = rt::monotonic_now_ns();
+  std::vector<bool> already(targets.size());
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    device::Device& device = *devices_[targets[t]];
+    device.set_estop_note("engaged by '" + who + "'" + (request.reason.empty() ? "" : ": " + request.reason));
+    already[t] = device.channel().estop.exchange(true, std::memory_order_acq_rel);
+  }
+  // The e-stop is latched now; say whether each device has been reached (its loop wrote the
+  // e-stop frame), waiting a few ticks for it, and why not where it has not.
+  const auto deadline = std::chrono::steady_clock::now() + kEstopConfirmation;
+  std::string reached;
+  std::string unreached;
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    device::Device& device = *devices_[targets[t]];
+    std::int64_t at_ns = 0;
+    while ((at_ns = device.channel().estop_reached_ns.load(std::memory_order_acquire)) == 0 &&
+           std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    const std::string& name = device.model().name;
+    if (at_ns != 0) {
+      std::ostringstream text;
+      text.precision(2);
+      text << std::fixed << "'" << name << "' ";
+      if (already[t]) {
+        text << "(already engaged)";
+      } else {
+        text << "in " << static_cast<double>(std::max<std::int64_t>(at_ns - engaged_ns, 0)) / 1e6 << " ms";
+      }
+      reached += (reached.empty() ? "" : ", ") + text.str();
     } else {
-      device->channel().estop.store(false, std::memory_order_release);
-      device->set_estop_note("");
+      const device::LoopState state = observers_[targets[t]]->latest();
+      const std::string why = state.state == DeviceState::kFault
+                                  ? "FAULT: " + std::string(state.fault.text.data())
+                                  : std::string(to_string(state.state));
+      unreached += (unreached.empty() ? "'" : "; '") + name + "' (" + why + ")";
     }
   }
-  const std::string message =
-      std::string(request.engage ? "e-stop engaged on " : "e-stop reset on ") + names + " by '" + who + "'";
-  if (request.engage) {
-    spdlog::warn("{}{}", message, request.reason.empty() ? "" : " (" + request.reason + ")");
-  } else {
-    spdlog::info("{}", message);
+  std::string message = "e-stop engaged by '" + who + "'";
+  if (!reached.empty()) message += "; reached " + reached;
+  if (!unreached.empty()) {
+    message += "; NOT confirmed on " + unreached + ": robotd cannot reach it now and keeps sending the e-stop every tick";
   }
+  spdlog::warn("{}{}", message, request.reason.empty() ? "" : " (" + request.reason + ")");
   return EstopResponse{true, message};
 }
 
@@ -122,26 +176,21 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   if (!index) return ResetZeroResponse{false, index.error().message};
   device::Device& device = *devices_[index.value()];
   const control::DeviceModel& model = device.model();
-  if (sessions_.any_active(index.value())) {
-    std::string holders;
-    for (const auto& session : sessions_.status(rt::monotonic_now_ns()).sessions) {
-      if (session.device == model.name) {
-        holders += (holders.empty() ? "" : ", ") + std::string("node '") + session.node_name + "' (session " +
-                   session.uuid + ")";
-      }
-    }
-    return ResetZeroResponse{false, "reset_zero is refused while a session is active on '" + model.name +
-                                        "': held by " + holders + "; release it first"};
+  const std::int32_t requested_timeout_ms = request.timeout_ms == 0 ? 10'000 : request.timeout_ms;
+  if (requested_timeout_ms < 100 || requested_timeout_ms > 60'000) {
+    return ResetZeroResponse{false, "timeout_ms " + std::to_string(request.timeout_ms) + " is outside 100..60000"};
   }
+  // Reserved from here on: no session can be granted between this check and the zeroing.
+  if (auto reserved = sessions_.reserve_for_maintenance(index.value(), "reset_zero"); !reserved) {
+    return ResetZeroResponse{false, reserved.error().message};
+  }
+  const MaintenanceReservation reservation(sessions_, index.value());
   const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
   if (state != DeviceState::kRunning) {
     return ResetZeroResponse{
         false, "device '" + model.name + "' is " + std::string(to_string(state)) + "; reset_zero needs it RUNNING"};
   }
-  const std::int32_t timeout_ms = request.timeout_ms == 0 ? 10'000 : request.timeout_ms;
-  if (timeout_ms < 100 || timeout_ms > 60'000) {
-    return ResetZeroResponse{false, "timeout_ms " + std::to_string(request.timeout_ms) + " is outside 100..60000"};
-  }
+  const std::int32_t timeout_ms = requested_timeout_ms;
   std::vector<int> joints;
   for (const auto id : request.motor_ids) {
     if (id < 0 || static_cast<std::size_t>(id) >= model.joint_count()) {
@@ -201,6 +250,18 @@ DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::strin
   const std::string& name = device.model().name;
   if (op == "recover") {
     if (!args.empty()) return call_failed("recover takes no arguments, got " + args.dump());
+    if (device.channel().estop.load(std::memory_order_acquire)) {
+      return call_failed("'" + name + "' is e-stopped: reset the e-stop first (an e-stop pre-empts maintenance)");
+    }
+    // On a RUNNING device, recover re-initialises the driver under live motors: refused while
+    // a session holds any of them, and no session may start while it runs.
+    std::optional<MaintenanceReservation> reservation;
+    if (device.channel().device_state.load(std::memory_order_acquire) == DeviceState::kRunning) {
+      if (auto reserved = sessions_.reserve_for_maintenance(index, "recover"); !reserved) {
+        return call_failed("'" + name + "' is RUNNING; " + reserved.error().message);
+      }
+      reservation.emplace(sessions_, index);
+    }
     spdlog::info("device '{}': recover requested", name);
     auto recovered =
         device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true, std::chrono::seconds(10));

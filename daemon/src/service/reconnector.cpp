@@ -51,7 +51,9 @@ void Reconnector::try_device(std::size_t index, std::chrono::steady_clock::time_
   Attempts& attempts = attempts_[index];
   const device::LoopState state = observers_[index]->latest();
   const bool link_lost = state.state == DeviceState::kFault && state.link_lost;
-  if (interval_ms <= 0 || !link_lost) {
+  // An engaged e-stop pre-empts maintenance: reconnecting waits for its reset.
+  const bool estopped = device.channel().estop.load(std::memory_order_acquire);
+  if (interval_ms <= 0 || !link_lost || estopped) {
     attempts.lost = false;
     return;
   }

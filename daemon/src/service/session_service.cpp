@@ -38,7 +38,10 @@ std::string state_refusal(DeviceState state, const std::string& device) {
 
 SessionService::SessionService(std::vector<device::Device*> devices, session::SessionLimits limits,
                                std::function<void()> on_change)
-    : devices_(std::move(devices)), table_(models_of(devices_), limits), on_change_(std::move(on_change)) {}
+    : devices_(std::move(devices)),
+      table_(models_of(devices_), limits),
+      maintenance_(devices_.size()),
+      on_change_(std::move(on_change)) {}
 
 RequestControlResponse SessionService::request_control(const RequestControlRequest& request) {
   RequestControlResponse response;
@@ -50,7 +53,14 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
       return response;
     }
     device::Device& device = *devices_[device_index.value()];
-    const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
+    if (const std::string& operation = maintenance_[device_index.value()]; !operation.empty()) {
+      response.message = "device '" + device.model().name + "' is in maintenance (" + operation + "); retry when it is done";
+      return response;
+    }
+    // The e-stop flag first: the state the loop publishes lags it by up to a tick.
+    const DeviceState state = device.channel().estop.load(std::memory_order_acquire)
+                                  ? DeviceState::kEstop
+                                  : device.channel().device_state.load(std::memory_order_acquire);
     if (const std::string refusal = state_refusal(state, device.model().name); !refusal.empty()) {
       response.message = refusal;
       return response;
@@ -164,6 +174,26 @@ std::optional<session::SessionRecord> SessionService::session_ended(std::size_t 
   }
   if (ended) on_change_();
   return ended;
+}
+
+Result<void> SessionService::reserve_for_maintenance(std::size_t device, const std::string& operation) {
+  const std::lock_guard lock(mutex_);
+  const std::string& name = devices_[device]->model().name;
+  if (!maintenance_[device].empty()) {
+    return make_error(ErrorCode::kRefused,
+                      "device '" + name + "' is already in maintenance (" + maintenance_[device] + "); retry when it is done");
+  }
+  if (const std::string holders = table_.holders(device, rt::monotonic_now_ns()); !holders.empty()) {
+    return make_error(ErrorCode::kRefused, operation + " is refused while a session is active on '" + name + "': " +
+                                               holders + "; release it first");
+  }
+  maintenance_[device] = operation;
+  return {};
+}
+
+void SessionService::end_maintenance(std::size_t device) {
+  const std::lock_guard lock(mutex_);
+  maintenance_[device].clear();
 }
 
 bool SessionService::any_active(std::size_t device) const {

@@ -47,6 +47,12 @@ class SessionService {
   std::optional<session::SessionRecord> session_ended(std::size_t device, std::uint8_t slot, std::uint32_t generation);
 
   bool any_active(std::size_t device) const;
+
+  /// Keeps new sessions off `device` while `operation` (recover, reset_zero) runs on it, so no
+  /// client takes motors that maintenance is about to move or re-zero. Refused while a session
+  /// holds any of its motors (the error names the holders) or another operation has it.
+  Result<void> reserve_for_maintenance(std::size_t device, const std::string& operation);
+  void end_maintenance(std::size_t device);
   Result<std::size_t> resolve_device(std::string_view name) const;
   /// The device `name` names ("": the only one), if any. The devices never change: no lock, no
   /// allocation.
@@ -58,6 +64,7 @@ class SessionService {
   mutable std::mutex mutex_;
   session::SessionTable table_;
   session::ActiveUuids active_;  // the uuids in table_, for is_active()
+  std::vector<std::string> maintenance_;  // per device: the operation that holds it, "" = none
   std::function<void()> on_change_;
 };
 

@@ -36,6 +36,26 @@ Result<void> check_gains(const std::vector<float>& gains, const char* name, std:
   return {};
 }
 
+// The fallback a session is told it gets must be what its joints get: DAMPING with a kd of 0
+// lets the joint go, and so does a KEEP hold with a kp of 0 on an impedance joint.
+Result<void> check_fallback_gains(const RequestControlRequest& request, const std::vector<std::int32_t>& motor_ids,
+                                  const control::DeviceModel& model) {
+  const Behavior applied = control::applied_behavior(request.default_behavior, model.behaviors);
+  const bool damping = applied == Behavior::kDamping;
+  const bool impedance_hold = applied == Behavior::kKeep && model.supports_torque;
+  const auto& gains = damping ? request.default_kd : request.default_kp;
+  if ((!damping && !impedance_hold) || gains.empty()) return {};
+  for (std::size_t i = 0; i < gains.size(); ++i) {
+    if (gains[i] > 0) continue;
+    return refused(std::string(damping ? "default_kd" : "default_kp") + " 0 for motor " + std::to_string(motor_ids[i]) +
+                   (damping ? " would make its DAMPING fallback let the joint go"
+                            : " would make its KEEP fallback hold with no stiffness") +
+                   "; give a gain > 0, leave " + (damping ? "default_kd" : "default_kp") +
+                   " empty for the joint's default, or ask for " + (damping ? "ZERO_TORQUE_MODE" : "DAMPING_MODE"));
+  }
+  return {};
+}
+
 }  // namespace
 
 std::int64_t SessionRecord::time_left_ms(std::int64_t now_ns) const {
@@ -125,6 +145,7 @@ Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, 
   if (auto kd = check_gains(request.default_kd, "default_kd", motor_ids.size(), motor_ids, model, false); !kd) {
     return kd.error();
   }
+  if (auto truthful = check_fallback_gains(request, motor_ids, model); !truthful) return truthful.error();
 
   control::MotorSet wanted;
   for (const auto id : motor_ids) wanted.set(static_cast<std::size_t>(id));
@@ -195,6 +216,10 @@ SessionRecord* SessionTable::find(std::string_view uuid) {
 bool SessionTable::any_active(std::size_t device) const {
   const auto& slots = sessions_[device].slots;
   return std::any_of(slots.begin(), slots.end(), [](const auto& slot) { return slot.has_value(); });
+}
+
+std::string SessionTable::holders(std::size_t device, std::int64_t now_ns) const {
+  return describe_holders(sessions_[device], control::MotorSet().set(), now_ns);
 }
 
 bool SessionTable::any_active() const {

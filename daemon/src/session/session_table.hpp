@@ -66,6 +66,8 @@ class SessionTable {
 
   SessionRecord* find(std::string_view uuid);
   bool any_active(std::size_t device) const;
+  /// Who holds motors of `device` ("" if nobody), as a refusal names them.
+  std::string holders(std::size_t device, std::int64_t now_ns) const;
   bool any_active() const;
   std::vector<std::int32_t> idle_motors(std::size_t device) const;
   /// Every session, ordered by device then grant time.
