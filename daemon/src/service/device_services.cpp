@@ -238,6 +238,17 @@ DeviceCallResponse DeviceServices::device_call(const DeviceCallRequest& request)
     if (op.substr(0, op.find(':')) == request.op) return daemon_op(index.value(), request.op, args);
   }
   device::Device& device = *devices_[index.value()];
+  const auto& ops = device.model().ops;
+  const auto described = std::find_if(ops.begin(), ops.end(), [&](const auto& op) { return op.name == request.op; });
+  // An op that acts on the joints themselves waits for nobody to hold them, and keeps new
+  // sessions off while it runs.
+  std::optional<MaintenanceReservation> reservation;
+  if (described != ops.end() && described->needs_free_motors) {
+    if (auto reserved = sessions_.reserve_for_maintenance(index.value(), request.op); !reserved) {
+      return call_failed("'" + device.model().name + "' " + request.op + ": " + reserved.error().message);
+    }
+    reservation.emplace(sessions_, index.value());
+  }
   const std::lock_guard lock(*call_mutexes_[index.value()]);
   auto result = device.driver().call(request.op, args);
   if (!result) return call_failed("'" + device.model().name + "' " + request.op + ": " + result.error().message);

@@ -51,6 +51,9 @@ struct JointDescription {
 struct OpDescription {
   std::string name;
   std::string help;  // one line: what it does, its JSON arguments with units
+  /// The op powers, enables, disables, brakes, reboots or moves joints robotd drives: robotd
+  /// refuses it while a session holds any motor of the device, and grants no session while it runs.
+  bool needs_free_motors = false;
 };
 
 struct DeviceDescription {
