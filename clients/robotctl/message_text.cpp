@@ -116,7 +116,7 @@ std::string behavior_text(robotd::Behavior requested, robotd::Behavior applied) 
 
 std::string session_table(const robotd::SessionStatus& status) {
   if (status.sessions.empty()) return "no active sessions\n";
-  TextTable table({"UUID", "NODE", "DEVICE", "MOTORS", "MODE", "ON TIMEOUT", "TIME LEFT", "COMMANDS"});
+  TextTable table({"SESSION", "NODE", "DEVICE", "MOTORS", "MODE", "ON TIMEOUT", "TIME LEFT", "COMMANDS"});
   for (const auto& session : status.sessions) {
     table.add_row({session.uuid, session.node_name, session.device, id_ranges(session.motor_ids),
                    std::string(robotd::to_string(session.control_mode)),

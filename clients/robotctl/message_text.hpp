@@ -12,7 +12,7 @@ namespace robotctl {
 std::string device_table(const std::vector<robotd::DeviceInfo>& devices);
 /// A block: state, fault, e-stop, loop timing, command counters, driver values.
 std::string device_status_text(const robotd::DeviceStatus& status);
-/// One row per session (uuid, node, device, motors, mode, timeout fallback, time left, commands
+/// One row per session (public id, node, device, motors, mode, timeout fallback, time left, commands
 /// accepted), or "no active sessions".
 std::string session_table(const robotd::SessionStatus& status);
 std::string joint_state_text(const robotd::JointState& state);

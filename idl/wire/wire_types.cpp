@@ -414,6 +414,7 @@ void Wire<RequestControlResponse>::to_c(const RequestControlResponse& in, C& out
   view_sequence(out.motor_ids, in.motor_ids);
   out.applied_behavior = enum_to_c(in.applied_behavior);
   out.device = c_string(in.device);
+  out.session_id = c_string(in.session_id);
 }
 RequestControlResponse Wire<RequestControlResponse>::from_c(const C& in) {
   return RequestControlResponse{in.success,
@@ -421,7 +422,8 @@ RequestControlResponse Wire<RequestControlResponse>::from_c(const C& in) {
                                 copy_string(in.uuid),
                                 copy_sequence<std::int32_t>(in.motor_ids),
                                 enum_from_c<Behavior>(in.applied_behavior),
-                                copy_string(in.device)};
+                                copy_string(in.device),
+                                copy_string(in.session_id)};
 }
 
 const dds_topic_descriptor_t& Wire<ReleaseControlRequest>::descriptor() {

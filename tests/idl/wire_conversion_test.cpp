@@ -71,7 +71,7 @@ inline auto fields(const RequestControlRequest& m) {
                   m.default_kd, m.device);
 }
 inline auto fields(const RequestControlResponse& m) {
-  return std::tie(m.success, m.message, m.uuid, m.motor_ids, m.applied_behavior, m.device);
+  return std::tie(m.success, m.message, m.uuid, m.motor_ids, m.applied_behavior, m.device, m.session_id);
 }
 inline auto fields(const ReleaseControlRequest& m) { return std::tie(m.node_name, m.uuid, m.release_mode); }
 inline auto fields(const ReleaseControlResponse& m) { return std::tie(m.success, m.message, m.applied_behavior); }
@@ -216,7 +216,7 @@ RequestControlRequest sample() {
 }
 template <>
 RequestControlResponse sample() {
-  return RequestControlResponse{true, "granted", "uuid-9", {3, 4}, Behavior::kDamping, "arm"};
+  return RequestControlResponse{true, "granted", "uuid-9", {3, 4}, Behavior::kDamping, "arm", "3f2a9c1e"};
 }
 template <>
 ReleaseControlRequest sample() {

@@ -365,10 +365,12 @@ TEST(WireLayout, ServiceServerEchoesTheRequestHeaderInItsReply) {
   response.motor_ids = {1, 2};
   response.applied_behavior = Behavior::kDamping;
   response.device = "arm";
+  response.session_id = "id";
   ASSERT_TRUE(server.value()->reply(*received, response));
 
   Xcdr1 expected;
   expected.u64(kGuid).i64(kSequence).boolean(true).string("ok").string("u").count(2).i32(1).i32(2).i32(1).string("arm");
+  expected.string("id");
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(replies.reader.get())));
 }
 

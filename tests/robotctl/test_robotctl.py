@@ -139,14 +139,14 @@ class RobotctlTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, f"stdout:\n{result.stdout}\nstderr:\n{result.stderr}")
 
     def acquire(self, *args):
-        """Starts `robotctl acquire arm ARGS`; returns (process, uuid) once it holds the session."""
+        """Starts `robotctl acquire arm ARGS`; returns (process, uuid, public session id) once it holds the session."""
         process = self.start_robotctl("acquire", "arm", *args)
         line = read_line(process.stdout)
-        match = re.match(r"uuid (\S+)", line)
+        match = re.match(r"uuid (\S+)  session ([0-9a-f]{8})  ", line)
         if not match:
             process.kill()
             self.fail(f"acquire printed {line!r}; stderr: {process.communicate()[1]}")
-        return process, match.group(1)
+        return process, match.group(1), match.group(2)
 
     def poll_robotctl(self, *args, until, timeout_s=3.0):
         """Runs robotctl ARGS until its output satisfies `until` or the timeout passes; returns the last output.
@@ -210,24 +210,30 @@ class RobotctlTest(unittest.TestCase):
                       self.poll_robotctl("sessions", until=lambda out: "no active sessions" in out))
 
     def test_acquire_holds_a_session_that_release_by_uuid_ends(self):
-        process, uuid = self.acquire("--motors", "0,1", "--timeout-ms", "500")
-        sessions = self.poll_robotctl("sessions", until=lambda out: uuid in out)
-        self.assertRegex(sessions, rf"{uuid}\s+robotctl\s+arm\s+0-1\s+POSITION")
+        process, uuid, session_id = self.acquire("--motors", "0,1", "--timeout-ms", "500")
+        sessions = self.poll_robotctl("sessions", until=lambda out: session_id in out)
+        self.assertRegex(sessions, rf"{session_id}\s+robotctl\s+arm\s+0-1\s+POSITION")
+        self.assertNotIn(uuid, sessions)
+        self.assertNotIn(uuid, self.robotctl("sessions", "--json").stdout)
 
+        by_id = self.robotctl("release", session_id)
+        self.assertEqual(by_id.returncode, 1)
+        self.assertIn("is the public id of a session of node 'robotctl'", by_id.stderr)
         released = self.robotctl("release", uuid)
         self.assertSucceeded(released)
         self.assertIn("released 2 motor(s)", released.stdout)
         # The holder notices robotd no longer lists its session, and says so.
         self.assertEqual(process.wait(timeout=10), 1)
         self.assertIn("has ended", process.stderr.read())
-        self.assertNotIn(uuid, self.poll_robotctl("sessions", until=lambda out: uuid not in out))
+        self.assertNotIn(session_id, self.poll_robotctl("sessions", until=lambda out: session_id not in out))
 
     def test_second_acquire_on_the_same_motors_is_refused_naming_the_holder(self):
-        holder, uuid = self.acquire("--motors", "2,3", "--node-name", "first-holder")
+        holder, uuid, session_id = self.acquire("--motors", "2,3", "--node-name", "first-holder")
         refused = self.robotctl("acquire", "arm", "--motors", "3,4")
         self.assertEqual(refused.returncode, 1)
         self.assertIn("first-holder", refused.stderr)
-        self.assertIn(uuid, refused.stderr)
+        self.assertIn(f"session {session_id}", refused.stderr)
+        self.assertNotIn(uuid, refused.stderr)
 
         holder.send_signal(signal.SIGINT)
         self.assertEqual(holder.wait(timeout=10), 0)

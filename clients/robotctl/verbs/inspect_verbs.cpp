@@ -66,7 +66,8 @@ Verb add_sessions_verb(CLI::App& app) {
   CLI::App* command = app.add_subcommand("sessions", "List the active control sessions");
   command->add_flag("--json", *json, "Print robotd's /session_status as JSON");
   command->footer(
-      "One row per session: uuid, node, device, motors, mode, timeout fallback (requested → applied when the "
+      "One row per session: public session id (not the uuid, which only the session's holder knows), node, "
+      "device, motors, mode, timeout fallback (requested → applied when the "
       "device cannot do what was asked), time left before it fires, commands accepted.\n\n"
       "Example:\n  robotctl sessions");
   return Verb{command, false, [json](VerbContext& context) {

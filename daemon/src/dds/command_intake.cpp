@@ -2,8 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/log_text.hpp"
 #include "rt/monotonic_clock.hpp"
-#include "session/session_uuid.hpp"
+#include "session/session_ids.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
 
@@ -56,12 +57,13 @@ void CommandIntake::run() {
   }
 }
 
-void CommandIntake::reject(std::size_t device, control::Rejection reason, const ControlCommand& command,
+void CommandIntake::reject(std::size_t device, control::Rejection reason, const std::string& sender,
                            const std::string& detail) {
   counters_[device]->count_rejection(reason);
-  log_.warn(devices_[device]->model().name + "/" + control::to_string(reason),
-            "rejected command on '" + devices_[device]->model().name + "' (" + control::to_string(reason) +
-                "): " + detail + " [session " + session::redacted_uuid(command.uuid) + "]");
+  const std::string& name = devices_[device]->model().name;
+  log_.warn(name + "/" + control::to_string(reason), "rejected command on '" + name + "' (" +
+                                                         control::to_string(reason) + "): " + app::log_text(detail) +
+                                                         " [" + sender + "]");
 }
 
 void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
@@ -69,16 +71,19 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   if (!session) {
     // Count it against the device the command names, or the only device; otherwise it
     // cannot be attributed to any device's counters.
+    const std::string sender = "uuid " + session::redacted_uuid(command.uuid);
     std::size_t device = devices_.size();
     if (auto named = sessions_.resolve_device(command.device)) device = named.value();
     if (device == devices_.size()) {
-      log_.warn("unattributed", "rejected command: session " + session::redacted_uuid(command.uuid) +
-                                    " is not active and the command names no known device");
+      log_.warn("unattributed",
+                "rejected command: " + sender + " is no active session and the command names no known device");
       return;
     }
     counters_[device]->received.fetch_add(1, std::memory_order_relaxed);
-    reject(device, control::Rejection::kUnknownSession, command,
-           "no active session has this uuid (request_control first; sessions end on timeout)");
+    reject(device, control::Rejection::kUnknownSession, sender,
+           sessions_.is_session_id(command.uuid)
+               ? "this is a session's public id, not its uuid (only the uuid request_control granted commands)"
+               : "no active session has this uuid (request_control first; sessions end on timeout)");
     return;
   }
 
@@ -86,14 +91,15 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   device::Device& device = *devices_[device_index];
   service::CommandCounterSet& counters = *counters_[device_index];
   counters.received.fetch_add(1, std::memory_order_relaxed);
+  const auto sender = [&session] { return "session " + session->session_id; };
 
   const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
   if (state == DeviceState::kEstop) {
-    reject(device_index, control::Rejection::kEstop, command, "device is e-stopped; reset the e-stop first");
+    reject(device_index, control::Rejection::kEstop, sender(), "device is e-stopped; reset the e-stop first");
     return;
   }
   if (state != DeviceState::kRunning) {
-    reject(device_index, control::Rejection::kFault, command,
+    reject(device_index, control::Rejection::kFault, sender(),
            "device is " + std::string(to_string(state)) + ", not RUNNING");
     return;
   }
@@ -101,7 +107,7 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   const control::SessionView view{device.model().name, session->mode, session->motors};
   const control::Verdict verdict = control::validate_command(command, view, device.model(), validated_);
   if (verdict.rejection) {
-    reject(device_index, *verdict.rejection, command, verdict.detail);
+    reject(device_index, *verdict.rejection, sender(), verdict.detail);
     return;
   }
 

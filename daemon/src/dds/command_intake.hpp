@@ -36,7 +36,8 @@ class CommandIntake {
 
  private:
   void run();
-  void reject(std::size_t device, control::Rejection reason, const ControlCommand& command, const std::string& detail);
+  /// Counts and logs (rate-limited) one rejected command; `sender` names its session, never by uuid.
+  void reject(std::size_t device, control::Rejection reason, const std::string& sender, const std::string& detail);
 
   const wire::Participant& participant_;
   std::vector<device::Device*> devices_;

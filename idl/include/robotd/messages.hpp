@@ -109,7 +109,7 @@ struct PolicyData {
 };
 
 struct SessionInfo {
-  std::string uuid;
+  std::string uuid;  // the session's public id, not its uuid (the name is the PI Plus's; see SessionStatus)
   std::string node_name;
   std::string device;
   std::vector<std::int32_t> motor_ids;
@@ -127,6 +127,8 @@ struct SessionStatus {
   std::string state;  // "idle" or "active"
   std::string policy_name;
   std::string policy_file_name;
+  // The PI Plus's parallel arrays. active_uuids holds each session's public id: a session's
+  // uuid is its capability and only its holder knows it (docs/security.md).
   std::vector<std::string> active_uuids;
   std::vector<std::string> node_names;
   std::vector<std::int32_t> motor_counts;
@@ -216,10 +218,11 @@ struct RequestControlRequest {
 struct RequestControlResponse {
   bool success = false;
   std::string message;
-  std::string uuid;
+  std::string uuid;  // the session's capability: put it in every command, keep it to yourself
   std::vector<std::int32_t> motor_ids;
   Behavior applied_behavior = Behavior::kKeep;
-  std::string device;  // the device granted
+  std::string device;      // the device granted
+  std::string session_id;  // the session's public id, as /session_status and refusals name it
 };
 
 struct ReleaseControlRequest {
