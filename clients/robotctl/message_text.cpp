@@ -126,6 +126,25 @@ std::string session_table(const robotd::SessionStatus& status) {
   return table.render();
 }
 
+std::string surface_text(const robotd::SurfaceCounters& surface) {
+  std::vector<std::string> services;
+  services.reserve(surface.services.size());
+  for (const auto& service : surface.services) {
+    std::string entry = service.service + " " + std::to_string(service.requests);
+    if (service.refused > 0 || service.oversized > 0) {
+      entry += " (" + std::to_string(service.refused) + " refused" +
+               (service.oversized > 0 ? ", " + std::to_string(service.oversized) + " oversized" : "") + ")";
+    }
+    services.push_back(entry);
+  }
+  return "dds surface\n" +
+         labelled("commands", std::to_string(surface.commands_unattributed) +
+                                  " commands named no active session and no known device") +
+         labelled("requests", services.empty() ? "none" : join(services, ", ")) +
+         labelled("dds layer",
+                  std::to_string(surface.dds_log_messages) + " warnings and errors (robotd's log shows them)");
+}
+
 std::string joint_state_text(const robotd::JointState& state) {
   TextTable table({"  JOINT", "POSITION rad", "VELOCITY rad/s", "EFFORT N·m"});
   for (std::size_t j = 0; j < state.name.size(); ++j) {

@@ -88,9 +88,11 @@ TEST_F(SessionCapabilityTest, NothingAnotherParticipantSeesCommandsOrReleasesThe
     EXPECT_EQ(text.find(held.uuid()), std::string::npos) << "the holder's uuid is visible to others: " << text;
   }
 
-  // Commands in the session's name with every string the observer saw: each rejected as naming
-  // no session, none accepted, the arm never commanded.
+  // Commands in the session's name with every string the observer saw: each rejected, as
+  // naming no session (or, longer than a uuid can be, as malformed), none accepted, the arm
+  // never commanded.
   const CommandCounters before = device_status().commands;
+  std::uint64_t uuid_sized = 0;
   for (const auto& text : seen) {
     ControlCommand command;
     command.uuid = text;
@@ -98,11 +100,13 @@ TEST_F(SessionCapabilityTest, NothingAnotherParticipantSeesCommandsOrReleasesThe
     command.motor_ids = {0};
     command.positions = {0.3F};
     ASSERT_TRUE(observer.publish(command));
+    if (text.size() <= 36) ++uuid_sized;
   }
   CommandCounters after = device_status().commands;
   for (int i = 0; i < 100 && after.received < before.received + seen.size(); ++i) after = device_status().commands;
   EXPECT_EQ(after.received, before.received + seen.size());
-  EXPECT_EQ(after.rejected_unknown_session, before.rejected_unknown_session + seen.size());
+  EXPECT_EQ(after.rejected_unknown_session, before.rejected_unknown_session + uuid_sized);
+  EXPECT_EQ(after.rejected_malformed, before.rejected_malformed + seen.size() - uuid_sized);
   EXPECT_EQ(after.accepted, before.accepted);
   for (const auto& joint : sim_joints()) EXPECT_EQ(joint["command"], "none") << joint.dump();
 

@@ -58,9 +58,13 @@ inline auto fields(const Joy& m) {
                   m.dpad_vertical, m.a, m.b, m.x, m.y, m.lb, m.rb, m.back, m.start, m.center, m.l, m.r, m.header);
 }
 inline auto fields(const PolicyData& m) { return std::tie(m.header, m.data_type, m.data); }
+inline auto fields(const ServiceCounters& m) { return std::tie(m.service, m.requests, m.refused, m.oversized); }
+inline auto fields(const SurfaceCounters& m) {
+  return std::tie(m.commands_unattributed, m.dds_log_messages, m.services);
+}
 inline auto fields(const SessionStatus& m) {
   return std::tie(m.header, m.state, m.policy_name, m.policy_file_name, m.active_uuids, m.node_names, m.motor_counts,
-                  m.sessions);
+                  m.sessions, m.surface);
 }
 inline auto fields(const DeviceStatus& m) {
   return std::tie(m.header, m.device, m.driver, m.state, m.state_text, m.fault_code, m.fault_text, m.estop_engaged,
@@ -189,7 +193,8 @@ SessionStatus sample() {
                        {"uuid-1", "uuid-2"},
                        {"node-1", "node-2"},
                        {2, 2},
-                       {session(1), session(2)}};
+                       {session(1), session(2)},
+                       {41, 42, {{"request_control", 43, 44, 45}, {"estop", 46, 47, 48}}}};
 }
 template <>
 DeviceStatus sample() {

@@ -180,10 +180,15 @@ class RobotctlTest(unittest.TestCase):
         self.assertRegex(result.stdout, r"execution\s+p50 [\d.]+\s+p99 [\d.]+\s+max [\d.]+ µs")
         self.assertRegex(result.stdout, r"\d+ ticks, \d+ overruns")
         self.assertIn("sessions", result.stdout)
+        self.assertRegex(result.stdout, r"dds surface\n  commands\s+0 commands named no active session")
+        self.assertRegex(result.stdout, r"requests\s+request_control \d+( \(\d+ refused\))?, release_control \d+")
 
         status = json.loads(self.robotctl("status", "--json").stdout)
         self.assertEqual(status["devices"][0]["state"], "RUNNING")
         self.assertGreater(status["devices"][0]["loop"]["ticks"], 0)
+        services = [service["service"] for service in status["sessions"]["surface"]["services"]]
+        self.assertEqual(services, ["request_control", "release_control", "get_available_motors", "reset_zero",
+                                    "estop", "list_devices", "device_call"])
 
     def test_move_arrives_and_joint_states_show_the_target(self):
         target = [0.3, -0.2, 0.1, 0.0, 0.25, -0.1]

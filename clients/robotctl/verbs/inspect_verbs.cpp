@@ -31,7 +31,9 @@ Verb add_status_verb(CLI::App& app) {
   command->add_flag("--json", *json, "Print {\"devices\": [DeviceStatus...], \"sessions\": SessionStatus} as JSON");
   command->footer(
       "Per device: state, fault, e-stop, control-loop timing (wake latency, execution time, period, overruns), "
-      "commands received and accepted and every non-zero rejection by reason; then the active sessions.\n\n"
+      "commands received and accepted and every non-zero rejection by reason; then the active sessions; then what "
+      "robotd's DDS surface counted: commands that named no active session and no known device, each service's "
+      "requests, refusals and oversized requests, and the DDS layer's warnings.\n\n"
       "Example:\n  robotctl status\n  robotctl status --json");
   return Verb{
       command, false, [json](VerbContext& context) {
@@ -55,7 +57,9 @@ Verb add_status_verb(CLI::App& app) {
         if (*json) {
           std::cout << pretty_text(Json{{"devices", device_statuses}, {"sessions", to_json(sessions.value())}}) << "\n";
         } else {
-          std::cout << "sessions\n" << session_table(sessions.value());
+          std::cout << "sessions\n"
+                    << session_table(sessions.value()) << "\n"
+                    << surface_text(sessions.value().surface);
         }
         return status;
       }};

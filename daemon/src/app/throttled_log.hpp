@@ -16,7 +16,11 @@ class ThrottledLog {
  public:
   explicit ThrottledLog(std::chrono::milliseconds interval = std::chrono::seconds(1)) : interval_(interval) {}
 
-  void warn(const std::string& key, const std::string& message) {
+  void warn(const std::string& key, const std::string& message) { log(spdlog::level::warn, key, message); }
+
+  /// `message` at `level`, unless `key` was logged less than an interval ago. Keys must come
+  /// from a bounded set (a reason, a service, a place in the code), never from the network.
+  void log(spdlog::level::level_enum level, const std::string& key, const std::string& message) {
     const auto now = std::chrono::steady_clock::now();
     std::uint64_t suppressed = 0;
     {
@@ -31,9 +35,9 @@ class ThrottledLog {
       entry.last_logged = now;
     }
     if (suppressed > 0) {
-      spdlog::warn("{} ({} similar messages suppressed)", message, suppressed);
+      spdlog::log(level, "{} ({} similar messages suppressed)", message, suppressed);
     } else {
-      spdlog::warn("{}", message);
+      spdlog::log(level, "{}", message);
     }
   }
 

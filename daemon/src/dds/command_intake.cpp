@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include "app/log_text.hpp"
+#include "dds/field_limits.hpp"
+#include "robotd/limits.hpp"
 #include "rt/monotonic_clock.hpp"
 #include "session/session_ids.hpp"
 #include "wire/qos.hpp"
@@ -17,8 +19,12 @@ constexpr int kCommandHistoryDepth = 64;
 }  // namespace
 
 CommandIntake::CommandIntake(const wire::Participant& participant, std::vector<device::Device*> devices,
-                             service::SessionService& sessions)
-    : participant_(participant), devices_(std::move(devices)), sessions_(sessions), sequence_(devices_.size(), 0) {
+                             service::SessionService& sessions, SurfaceCounterSet& surface)
+    : participant_(participant),
+      devices_(std::move(devices)),
+      sessions_(sessions),
+      surface_(surface),
+      sequence_(devices_.size(), 0) {
   for (std::size_t i = 0; i < devices_.size(); ++i) {
     counters_.push_back(std::make_unique<service::CommandCounterSet>());
     working_.push_back(std::make_unique<device::CommandSnapshot>());
@@ -66,24 +72,37 @@ void CommandIntake::reject(std::size_t device, control::Rejection reason, const 
                                                          " [" + sender + "]");
 }
 
+std::size_t CommandIntake::counting_device(const ControlCommand& command) const {
+  if (command.device.size() > limits::kDeviceNameBytes) return devices_.size();
+  const auto named = sessions_.resolve_device(command.device);
+  return named ? named.value() : devices_.size();
+}
+
 void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
+  const std::optional<Oversize> oversize = find_oversize(command);
   const auto session = sessions_.authorize(command.uuid);
-  if (!session) {
-    // Count it against the device the command names, or the only device; otherwise it
-    // cannot be attributed to any device's counters.
-    const std::string sender = "uuid " + session::redacted_uuid(command.uuid);
-    std::size_t device = devices_.size();
-    if (auto named = sessions_.resolve_device(command.device)) device = named.value();
+  if (!session || oversize) {
+    // Counted against its session's device, else the device it names, else the only device;
+    // with none of those no device's counters can hold it, and the surface's do.
+    const std::size_t device = session ? session->device : counting_device(command);
+    const std::string sender =
+        session ? "session " + session->session_id : "uuid " + session::redacted_uuid(command.uuid);
     if (device == devices_.size()) {
+      surface_.commands_unattributed.fetch_add(1, std::memory_order_relaxed);
       log_.warn("unattributed",
-                "rejected command: " + sender + " is no active session and the command names no known device");
+                "rejected command: " + sender + " is no active session and the command names no known device ('" +
+                    app::log_text(command.device) + "')" + (oversize ? "; " + oversize->describe() : ""));
       return;
     }
     counters_[device]->received.fetch_add(1, std::memory_order_relaxed);
-    reject(device, control::Rejection::kUnknownSession, sender,
-           sessions_.is_session_id(command.uuid)
-               ? "this is a session's public id, not its uuid (only the uuid request_control granted commands)"
-               : "no active session has this uuid (request_control first; sessions end on timeout)");
+    if (oversize) {
+      reject(device, control::Rejection::kMalformed, sender, oversize->describe());
+    } else {
+      reject(device, control::Rejection::kUnknownSession, sender,
+             sessions_.is_session_id(command.uuid)
+                 ? "this is a session's public id, not its uuid (only the uuid request_control granted commands)"
+                 : "no active session has this uuid (request_control first; sessions end on timeout)");
+    }
     return;
   }
 

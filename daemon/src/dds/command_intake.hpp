@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/throttled_log.hpp"
+#include "dds/surface_counters.hpp"
 #include "device/device.hpp"
 #include "service/command_counters.hpp"
 #include "service/session_service.hpp"
@@ -20,8 +21,9 @@ namespace robotd::dds {
 
 class CommandIntake {
  public:
+  /// A command no device's counters can claim is counted in `surface`.
   CommandIntake(const wire::Participant& participant, std::vector<device::Device*> devices,
-                service::SessionService& sessions);
+                service::SessionService& sessions, SurfaceCounterSet& surface);
   CommandIntake(const CommandIntake&) = delete;
   CommandIntake& operator=(const CommandIntake&) = delete;
   ~CommandIntake();
@@ -38,10 +40,14 @@ class CommandIntake {
   void run();
   /// Counts and logs (rate-limited) one rejected command; `sender` names its session, never by uuid.
   void reject(std::size_t device, control::Rejection reason, const std::string& sender, const std::string& detail);
+  /// The device whose counters take a command without a usable session: the one it names, or
+  /// the only one; devices_.size() when there is none.
+  std::size_t counting_device(const ControlCommand& command) const;
 
   const wire::Participant& participant_;
   std::vector<device::Device*> devices_;
   service::SessionService& sessions_;
+  SurfaceCounterSet& surface_;
   std::vector<std::unique_ptr<service::CommandCounterSet>> counters_;
   std::vector<std::unique_ptr<device::CommandSnapshot>> working_;  // intake's copy of each mailbox
   std::vector<std::uint64_t> sequence_;

@@ -122,6 +122,21 @@ struct SessionInfo {
   std::uint64_t commands_accepted = 0;
 };
 
+/// One service's requests as robotd's DDS surface saw them.
+struct ServiceCounters {
+  std::string service;  // "request_control", ...
+  std::uint64_t requests = 0;
+  std::uint64_t refused = 0;    // replies with success = false, oversized requests included
+  std::uint64_t oversized = 0;  // requests with a field beyond its limit (refused, but an e-stop's words are cut)
+};
+
+/// What robotd's DDS surface saw that no device's CommandCounters can hold.
+struct SurfaceCounters {
+  std::uint64_t commands_unattributed = 0;  // naming no active session and no device robotd has
+  std::uint64_t dds_log_messages = 0;       // warnings and errors of the DDS layer (a malformed sample, ...)
+  std::vector<ServiceCounters> services;
+};
+
 struct SessionStatus {
   Header header;
   std::string state;  // "idle" or "active"
@@ -133,6 +148,7 @@ struct SessionStatus {
   std::vector<std::string> node_names;
   std::vector<std::int32_t> motor_counts;
   std::vector<SessionInfo> sessions;
+  SurfaceCounters surface;
 };
 
 struct LoopStatistics {
