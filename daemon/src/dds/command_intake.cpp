@@ -63,13 +63,13 @@ void CommandIntake::run() {
   }
 }
 
-void CommandIntake::reject(std::size_t device, control::Rejection reason, const std::string& sender,
-                           const std::string& detail) {
+template <class MakeDetail>
+void CommandIntake::reject(std::size_t device, control::Rejection reason, MakeDetail make_detail) {
   counters_[device]->count_rejection(reason);
   const std::string& name = devices_[device]->model().name;
-  log_.warn(name + "/" + control::to_string(reason), "rejected command on '" + name + "' (" +
-                                                         control::to_string(reason) + "): " + app::log_text(detail) +
-                                                         " [" + sender + "]");
+  log_.warn(name + "/" + control::to_string(reason), [&] {
+    return "rejected command on '" + name + "' (" + control::to_string(reason) + "): " + make_detail();
+  });
 }
 
 std::size_t CommandIntake::counting_device(const ControlCommand& command) const {
@@ -81,27 +81,33 @@ std::size_t CommandIntake::counting_device(const ControlCommand& command) const 
 void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   const std::optional<Oversize> oversize = find_oversize(command);
   const auto session = sessions_.authorize(command.uuid);
+  // Who sent it, for a log line: its session's public id, never a uuid that works.
+  const auto sender = [&] {
+    return session ? "session " + session->session_id : "uuid " + session::redacted_uuid(command.uuid);
+  };
   if (!session || oversize) {
     // Counted against its session's device, else the device it names, else the only device;
     // with none of those no device's counters can hold it, and the surface's do.
     const std::size_t device = session ? session->device : counting_device(command);
-    const std::string sender =
-        session ? "session " + session->session_id : "uuid " + session::redacted_uuid(command.uuid);
     if (device == devices_.size()) {
       surface_.commands_unattributed.fetch_add(1, std::memory_order_relaxed);
-      log_.warn("unattributed",
-                "rejected command: " + sender + " is no active session and the command names no known device ('" +
-                    app::log_text(command.device) + "')" + (oversize ? "; " + oversize->describe() : ""));
+      log_.warn("unattributed", [&] {
+        return "rejected command: " + sender() + " is no active session and the command names no known device ('" +
+               app::log_text(command.device) + "')" + (oversize ? "; " + oversize->describe() : "");
+      });
       return;
     }
     counters_[device]->received.fetch_add(1, std::memory_order_relaxed);
     if (oversize) {
-      reject(device, control::Rejection::kMalformed, sender, oversize->describe());
+      reject(device, control::Rejection::kMalformed, [&] { return oversize->describe() + " [" + sender() + "]"; });
     } else {
-      reject(device, control::Rejection::kUnknownSession, sender,
-             sessions_.is_session_id(command.uuid)
-                 ? "this is a session's public id, not its uuid (only the uuid request_control granted commands)"
-                 : "no active session has this uuid (request_control first; sessions end on timeout)");
+      reject(device, control::Rejection::kUnknownSession, [&] {
+        return std::string(sessions_.is_session_id(command.uuid)
+                               ? "this is a session's public id, not its uuid (only the uuid request_control "
+                                 "granted commands)"
+                               : "no active session has this uuid (request_control first; sessions end on timeout)") +
+               " [" + sender() + "]";
+      });
     }
     return;
   }
@@ -110,23 +116,23 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
   device::Device& device = *devices_[device_index];
   service::CommandCounterSet& counters = *counters_[device_index];
   counters.received.fetch_add(1, std::memory_order_relaxed);
-  const auto sender = [&session] { return "session " + session->session_id; };
 
   const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
   if (state == DeviceState::kEstop) {
-    reject(device_index, control::Rejection::kEstop, sender(), "device is e-stopped; reset the e-stop first");
+    reject(device_index, control::Rejection::kEstop,
+           [&] { return "device is e-stopped; reset the e-stop first [" + sender() + "]"; });
     return;
   }
   if (state != DeviceState::kRunning) {
-    reject(device_index, control::Rejection::kFault, sender(),
-           "device is " + std::string(to_string(state)) + ", not RUNNING");
+    reject(device_index, control::Rejection::kFault,
+           [&] { return "device is " + std::string(to_string(state)) + ", not RUNNING [" + sender() + "]"; });
     return;
   }
 
   const control::SessionView view{device.model().name, session->mode, session->motors};
   const control::Verdict verdict = control::validate_command(command, view, device.model(), validated_);
   if (verdict.rejection) {
-    reject(device_index, *verdict.rejection, sender(), verdict.detail);
+    reject(device_index, *verdict.rejection, [&] { return app::log_text(verdict.detail) + " [" + sender() + "]"; });
     return;
   }
 

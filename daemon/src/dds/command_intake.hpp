@@ -38,8 +38,10 @@ class CommandIntake {
 
  private:
   void run();
-  /// Counts and logs (rate-limited) one rejected command; `sender` names its session, never by uuid.
-  void reject(std::size_t device, control::Rejection reason, const std::string& sender, const std::string& detail);
+  /// Counts one rejected command and logs it (rate-limited); make_detail() says why and who sent
+  /// it, and is called only when the line is logged.
+  template <class MakeDetail>
+  void reject(std::size_t device, control::Rejection reason, MakeDetail make_detail);
   /// The device whose counters take a command without a usable session: the one it names, or
   /// the only one; devices_.size() when there is none.
   std::size_t counting_device(const ControlCommand& command) const;

@@ -47,16 +47,20 @@ SessionTable::SessionTable(std::vector<const control::DeviceModel*> devices, Ses
     : devices_(std::move(devices)), limits_(limits), sessions_(devices_.size()) {}
 
 Result<std::size_t> SessionTable::resolve_device(std::string_view name) const {
-  std::string known;
-  for (const auto* device : devices_) known += (known.empty() ? "'" : ", '") + device->name + "'";
+  // Only a refusal lists the devices: a flood of commands resolves its device every time.
+  const auto known = [this] {
+    std::string text;
+    for (const auto* device : devices_) text += (text.empty() ? "'" : ", '") + device->name + "'";
+    return text;
+  };
   if (name.empty()) {
     if (devices_.size() == 1) return std::size_t{0};
-    return refused("no device named: this robotd serves " + known + "; say which one");
+    return refused("no device named: this robotd serves " + known() + "; say which one");
   }
   for (std::size_t i = 0; i < devices_.size(); ++i) {
     if (devices_[i]->name == name) return i;
   }
-  return refused("unknown device '" + std::string(name) + "' (this robotd serves " + known + ")");
+  return refused("unknown device '" + std::string(name) + "' (this robotd serves " + known() + ")");
 }
 
 Result<void> SessionTable::check_request(const RequestControlRequest& request,
