@@ -65,6 +65,19 @@ Json to_json(const robotd::SessionInfo& session) {
               {"commands_accepted", session.commands_accepted}};
 }
 
+Json to_json(const robotd::SurfaceCounters& surface) {
+  Json services = Json::array();
+  for (const auto& service : surface.services) {
+    services.push_back(Json{{"service", service.service},
+                            {"requests", service.requests},
+                            {"refused", service.refused},
+                            {"oversized", service.oversized}});
+  }
+  return Json{{"commands_unattributed", surface.commands_unattributed},
+              {"dds_log_messages", surface.dds_log_messages},
+              {"services", services}};
+}
+
 }  // namespace
 
 Json to_json(const std::vector<robotd::DeviceInfo>& devices) {
@@ -113,7 +126,8 @@ Json to_json(const robotd::SessionStatus& status) {
   return Json{{"header", to_json(status.header)},    {"state", status.state},
               {"policy_name", status.policy_name},   {"policy_file_name", status.policy_file_name},
               {"active_uuids", status.active_uuids}, {"node_names", status.node_names},
-              {"motor_counts", status.motor_counts}, {"sessions", sessions}};
+              {"motor_counts", status.motor_counts}, {"sessions", sessions},
+              {"surface", to_json(status.surface)}};
 }
 
 Json to_json(const robotd::JointState& state) {

@@ -116,7 +116,7 @@ std::string behavior_text(robotd::Behavior requested, robotd::Behavior applied) 
 
 std::string session_table(const robotd::SessionStatus& status) {
   if (status.sessions.empty()) return "no active sessions\n";
-  TextTable table({"UUID", "NODE", "DEVICE", "MOTORS", "MODE", "ON TIMEOUT", "TIME LEFT", "COMMANDS"});
+  TextTable table({"SESSION", "NODE", "DEVICE", "MOTORS", "MODE", "ON TIMEOUT", "TIME LEFT", "COMMANDS"});
   for (const auto& session : status.sessions) {
     table.add_row({session.uuid, session.node_name, session.device, id_ranges(session.motor_ids),
                    std::string(robotd::to_string(session.control_mode)),
@@ -124,6 +124,25 @@ std::string session_table(const robotd::SessionStatus& status) {
                    std::to_string(session.time_left_ms) + " ms", std::to_string(session.commands_accepted)});
   }
   return table.render();
+}
+
+std::string surface_text(const robotd::SurfaceCounters& surface) {
+  std::vector<std::string> services;
+  services.reserve(surface.services.size());
+  for (const auto& service : surface.services) {
+    std::string entry = service.service + " " + std::to_string(service.requests);
+    if (service.refused > 0 || service.oversized > 0) {
+      entry += " (" + std::to_string(service.refused) + " refused" +
+               (service.oversized > 0 ? ", " + std::to_string(service.oversized) + " oversized" : "") + ")";
+    }
+    services.push_back(entry);
+  }
+  return "dds surface\n" +
+         labelled("commands", std::to_string(surface.commands_unattributed) +
+                                  " commands named no active session and no known device") +
+         labelled("requests", services.empty() ? "none" : join(services, ", ")) +
+         labelled("dds layer",
+                  std::to_string(surface.dds_log_messages) + " warnings and errors (robotd's log shows them)");
 }
 
 std::string joint_state_text(const robotd::JointState& state) {

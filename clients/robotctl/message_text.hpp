@@ -12,9 +12,12 @@ namespace robotctl {
 std::string device_table(const std::vector<robotd::DeviceInfo>& devices);
 /// A block: state, fault, e-stop, loop timing, command counters, driver values.
 std::string device_status_text(const robotd::DeviceStatus& status);
-/// One row per session (uuid, node, device, motors, mode, timeout fallback, time left, commands
+/// One row per session (public id, node, device, motors, mode, timeout fallback, time left, commands
 /// accepted), or "no active sessions".
 std::string session_table(const robotd::SessionStatus& status);
+/// A block: commands no device could count, each service's requests, refusals and oversized
+/// requests, the DDS layer's messages.
+std::string surface_text(const robotd::SurfaceCounters& surface);
 std::string joint_state_text(const robotd::JointState& state);
 std::string imu_text(const robotd::Imu& imu);
 std::string end_pose_text(const robotd::PoseStamped& pose);

@@ -10,19 +10,11 @@ using recording::RecordKind;
 
 std::size_t count_index(RecordKind kind) { return static_cast<std::size_t>(kind) - 1; }
 
-// The uuid is a session's capability (docs/security.md): a recording keeps what robotd's log
-// keeps, its first 8 characters.
-robotd::SessionStatus with_short_uuids(robotd::SessionStatus status) {
-  for (auto& uuid : status.active_uuids) uuid = uuid.substr(0, 8);
-  for (auto& session : status.sessions) session.uuid = session.uuid.substr(0, 8);
-  return status;
-}
-
 }  // namespace
 
 RecordingSink::RecordingSink(recording::RecordingWriter writer, const recording::Description& description,
-                             bool keep_unknown_devices)
-    : keep_unknown_devices_(keep_unknown_devices), writer_(std::move(writer)) {
+                             bool keep_unknown_devices, std::string only_device)
+    : keep_unknown_devices_(keep_unknown_devices), only_device_(std::move(only_device)), writer_(std::move(writer)) {
   for (std::size_t i = 0; i < description.devices.size(); ++i) {
     device_indices_.emplace(description.devices[i].name, static_cast<std::uint16_t>(i));
   }
@@ -48,19 +40,14 @@ void RecordingSink::add(const robotd::JointState& state) {
 }
 
 void RecordingSink::add(const robotd::ControlCommand& command) {
-  const std::lock_guard lock(mutex_);
-  std::string device_name = command.device;
-  if (device_name.empty()) {
-    const auto session = session_devices_.find(command.uuid);
-    if (session != session_devices_.end()) device_name = session->second;
-  }
-  const auto device = device_index(device_name);
+  const auto device = device_index(command.device.empty() ? only_device_ : command.device);
   if (!device && !keep_unknown_devices_) return;
   const recording::ControlCommandRecord record{
       device.value_or(recording::kUnknownDevice),
       command.header.stamp.to_ns(),
       recording::session_tag(command.uuid),
       {command.motor_ids, command.positions, command.velocities, command.kp, command.kd, command.torques}};
+  const std::lock_guard lock(mutex_);
   append(RecordKind::kControlCommand, recording::encode(record));
 }
 
@@ -71,11 +58,10 @@ void RecordingSink::add(const robotd::DeviceStatus& status) {
   append(RecordKind::kDeviceStatus, json_text);
 }
 
-void RecordingSink::add(const robotd::SessionStatus& status, bool record) {
-  const std::string json_text = record ? compact_text(to_json(with_short_uuids(status))) : "";
+void RecordingSink::add(const robotd::SessionStatus& status) {
+  const std::string json_text = compact_text(to_json(status));
   const std::lock_guard lock(mutex_);
-  for (const auto& session : status.sessions) session_devices_[session.uuid] = session.device;
-  if (record) append(RecordKind::kSessionStatus, json_text);
+  append(RecordKind::kSessionStatus, json_text);
 }
 
 void RecordingSink::append(RecordKind kind, const std::optional<std::string>& payload) {

@@ -20,16 +20,16 @@ namespace robotctl {
 class RecordingSink {
  public:
   /// Records samples of the devices in `description` (a command whose device is not among them
-  /// is recorded with kUnknownDevice only when `keep_unknown_devices`).
-  RecordingSink(recording::RecordingWriter writer, const recording::Description& description,
-                bool keep_unknown_devices);
+  /// is recorded with kUnknownDevice only when `keep_unknown_devices`). A command that names no
+  /// device is for `only_device`, robotd's one device ("" when it serves several: robotd alone
+  /// knows which device such a command's session is on).
+  RecordingSink(recording::RecordingWriter writer, const recording::Description& description, bool keep_unknown_devices,
+                std::string only_device);
 
   void add(const robotd::JointState& state);
   void add(const robotd::ControlCommand& command);
   void add(const robotd::DeviceStatus& status);
-  /// Records it only when `record`; either way, learns which device each session is on, for
-  /// commands that do not name their device.
-  void add(const robotd::SessionStatus& status, bool record);
+  void add(const robotd::SessionStatus& status);
 
   /// Hands what is buffered to the kernel; fails once any write has failed.
   robotd::Result<void> flush();
@@ -51,10 +51,10 @@ class RecordingSink {
 
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   const bool keep_unknown_devices_;
+  const std::string only_device_;
   std::map<std::string, std::uint16_t> device_indices_;
   mutable std::mutex mutex_;
   recording::RecordingWriter writer_;
-  std::map<std::string, std::string> session_devices_;  // uuid -> device
   Summary summary_;
   std::optional<robotd::Error> error_;  // the first failed write
 };

@@ -28,4 +28,11 @@ QosPtr transient_local_qos(int depth) {
 
 QosPtr service_qos() { return base_qos(10); }
 
+QosPtr service_request_reader_qos() {
+  QosPtr qos = base_qos(10);
+  dds_qset_history(qos.get(), DDS_HISTORY_KEEP_ALL, 0);
+  dds_qset_resource_limits(qos.get(), kPendingRequestsPerService, DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+  return qos;
+}
+
 }  // namespace robotd::wire

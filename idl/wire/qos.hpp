@@ -18,4 +18,12 @@ QosPtr reliable_qos(int depth);         // ROS default profile: reliable, volati
 QosPtr transient_local_qos(int depth);  // reliable, transient local, keep last `depth`
 QosPtr service_qos();                   // ROS services default: reliable, volatile, keep last 10
 
+/// Requests a service server holds before it has taken them. Beyond that Cyclone stops taking
+/// samples off the network (all of them, on that participant) until the server catches up: the
+/// writers are held back by reliable flow control instead of losing requests.
+inline constexpr int kPendingRequestsPerService = 4096;
+/// A service server's request reader: reliable, volatile, keep all (up to
+/// kPendingRequestsPerService), so a burst of requests is answered, not overwritten.
+QosPtr service_request_reader_qos();
+
 }  // namespace robotd::wire

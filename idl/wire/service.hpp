@@ -36,16 +36,17 @@ template <class Request, class Response>
 class ServiceServer {
  public:
   static Result<std::unique_ptr<ServiceServer>> create(const Participant& participant, std::string_view service) {
-    auto qos = service_qos();
+    auto request_qos = service_request_reader_qos();
+    auto reply_qos = service_qos();
     auto request_topic_entity = create_topic<Request>(participant, request_topic(service));
     if (!request_topic_entity) return request_topic_entity.error();
     auto reply_topic_entity = create_topic<Response>(participant, reply_topic(service));
     if (!reply_topic_entity) return reply_topic_entity.error();
     const dds_entity_t reader =
-        dds_create_reader(participant.handle(), request_topic_entity.value().get(), qos.get(), nullptr);
+        dds_create_reader(participant.handle(), request_topic_entity.value().get(), request_qos.get(), nullptr);
     if (reader < 0) return dds_failure("create a service request reader", request_topic(service), reader);
     const dds_entity_t writer =
-        dds_create_writer(participant.handle(), reply_topic_entity.value().get(), qos.get(), nullptr);
+        dds_create_writer(participant.handle(), reply_topic_entity.value().get(), reply_qos.get(), nullptr);
     if (writer < 0) return dds_failure("create a service reply writer", reply_topic(service), writer);
     return std::unique_ptr<ServiceServer>(
         new ServiceServer(std::string(service), std::move(request_topic_entity.value()),
@@ -116,14 +117,17 @@ class ServiceClient {
     const dds_entity_t writer =
         dds_create_writer(participant.handle(), request_topic_entity.value().get(), qos.get(), nullptr);
     if (writer < 0) return dds_failure("create a service request writer", request_topic(service), writer);
+    // Every client of the service reads the one reply topic. This reader stores only the replies
+    // to this client, so other clients' replies never push its own out of its keep-last history.
+    auto guid = std::make_unique<std::uint64_t>(0);
+    dds_get_instance_handle(writer, guid.get());
+    dds_set_topic_filter_and_arg(reply_topic_entity.value().get(), &is_reply_to, guid.get());
     const dds_entity_t reader =
         dds_create_reader(participant.handle(), reply_topic_entity.value().get(), qos.get(), nullptr);
     if (reader < 0) return dds_failure("create a service reply reader", reply_topic(service), reader);
-    dds_instance_handle_t guid = 0;
-    dds_get_instance_handle(writer, &guid);
     return std::unique_ptr<ServiceClient>(
         new ServiceClient(participant.handle(), std::string(service), std::move(request_topic_entity.value()),
-                          std::move(reply_topic_entity.value()), Entity(writer), Entity(reader), guid));
+                          std::move(reply_topic_entity.value()), Entity(writer), Entity(reader), std::move(guid)));
   }
 
   /// Sends `request` and waits for its reply. Never waits longer than `timeout` in total.
@@ -156,7 +160,7 @@ class ServiceClient {
     typename Wire<Request>::C sample{};
     CArena arena;
     Wire<Request>::to_c(request, sample, arena);
-    sample.client_guid = guid_;
+    sample.client_guid = *guid_;
     sample.sequence_number = ++sequence_;
     const dds_return_t rc = dds_write(writer_.get(), &sample);
     if (rc < 0) return make_error(ErrorCode::kTransport, dds_error(("send a /" + name_ + " request").c_str(), rc));
@@ -167,16 +171,20 @@ class ServiceClient {
   }
 
   ServiceClient(dds_entity_t participant, std::string name, Entity request_topic, Entity reply_topic, Entity writer,
-                Entity reader, std::uint64_t guid)
-      : name_(std::move(name)),
+                Entity reader, std::unique_ptr<std::uint64_t> guid)
+      : guid_(std::move(guid)),
+        name_(std::move(name)),
         request_topic_(std::move(request_topic)),
         reply_topic_(std::move(reply_topic)),
         writer_(std::move(writer)),
         reader_(std::move(reader)),
-        waitset_(dds_create_waitset(participant)),
-        guid_(guid) {
+        waitset_(dds_create_waitset(participant)) {
     condition_ = dds_create_readcondition(reader_.get(), DDS_ANY_STATE);
     dds_waitset_attach(waitset_.get(), condition_, 0);
+  }
+
+  static bool is_reply_to(const void* sample, void* guid) {
+    return static_cast<const typename Wire<Response>::C*>(sample)->client_guid == *static_cast<std::uint64_t*>(guid);
   }
 
   bool wait_until_matched(std::chrono::steady_clock::time_point deadline) const {
@@ -200,7 +208,7 @@ class ServiceClient {
       for (int i = 0; i < count; ++i) {
         const auto index = static_cast<std::size_t>(i);
         const auto& c = *static_cast<const typename Wire<Response>::C*>(samples[index]);
-        if (infos[index].valid_data && c.client_guid == guid_ && c.sequence_number == sequence) {
+        if (infos[index].valid_data && c.client_guid == *guid_ && c.sequence_number == sequence) {
           Response response = Wire<Response>::from_c(c);
           dds_return_loan(reader_.get(), samples.data(), count);
           return response;
@@ -220,6 +228,9 @@ class ServiceClient {
     }
   }
 
+  // On the heap, and declared before the entities so that it outlives them: the reply topic's
+  // filter holds its address.
+  std::unique_ptr<std::uint64_t> guid_;
   std::mutex mutex_;
   std::string name_;
   Entity request_topic_;
@@ -228,7 +239,6 @@ class ServiceClient {
   Entity reader_;
   Entity waitset_;
   dds_entity_t condition_ = 0;
-  std::uint64_t guid_ = 0;
   std::int64_t sequence_ = 0;
 };
 

@@ -63,6 +63,28 @@ void session_info_to_c(const SessionInfo& in, robotd_msgs_msg_dds__SessionInfo_&
   out.commands_accepted = in.commands_accepted;
 }
 
+void surface_to_c(const SurfaceCounters& in, robotd_msgs_msg_dds__SurfaceCounters_& out, CArena& arena) {
+  out.commands_unattributed = in.commands_unattributed;
+  out.dds_log_messages = in.dds_log_messages;
+  auto* services = arena.array<robotd_msgs_msg_dds__ServiceCounters_>(in.services.size());
+  for (std::size_t i = 0; i < in.services.size(); ++i) {
+    const ServiceCounters& service = in.services[i];
+    services[i] = {c_string(service.service), service.requests, service.refused, service.oversized};
+  }
+  out.services._length = out.services._maximum = static_cast<std::uint32_t>(in.services.size());
+  out.services._buffer = services;
+  out.services._release = false;
+}
+
+SurfaceCounters surface_from_c(const robotd_msgs_msg_dds__SurfaceCounters_& in) {
+  SurfaceCounters out{in.commands_unattributed, in.dds_log_messages, {}};
+  for (std::uint32_t i = 0; i < in.services._length; ++i) {
+    const auto& service = in.services._buffer[i];
+    out.services.push_back({copy_string(service.service), service.requests, service.refused, service.oversized});
+  }
+  return out;
+}
+
 SessionInfo session_info_from_c(const robotd_msgs_msg_dds__SessionInfo_& in) {
   SessionInfo out;
   out.uuid = copy_string(in.uuid);
@@ -260,6 +282,7 @@ void Wire<SessionStatus>::to_c(const SessionStatus& in, C& out, CArena& arena) {
   out.sessions._length = out.sessions._maximum = static_cast<std::uint32_t>(in.sessions.size());
   out.sessions._buffer = sessions;
   out.sessions._release = false;
+  surface_to_c(in.surface, out.surface, arena);
 }
 
 SessionStatus Wire<SessionStatus>::from_c(const C& in) {
@@ -273,6 +296,7 @@ SessionStatus Wire<SessionStatus>::from_c(const C& in) {
   out.motor_counts = copy_sequence<std::int32_t>(in.motor_counts);
   for (std::uint32_t i = 0; i < in.sessions._length; ++i)
     out.sessions.push_back(session_info_from_c(in.sessions._buffer[i]));
+  out.surface = surface_from_c(in.surface);
   return out;
 }
 
@@ -414,6 +438,7 @@ void Wire<RequestControlResponse>::to_c(const RequestControlResponse& in, C& out
   view_sequence(out.motor_ids, in.motor_ids);
   out.applied_behavior = enum_to_c(in.applied_behavior);
   out.device = c_string(in.device);
+  out.session_id = c_string(in.session_id);
 }
 RequestControlResponse Wire<RequestControlResponse>::from_c(const C& in) {
   return RequestControlResponse{in.success,
@@ -421,7 +446,8 @@ RequestControlResponse Wire<RequestControlResponse>::from_c(const C& in) {
                                 copy_string(in.uuid),
                                 copy_sequence<std::int32_t>(in.motor_ids),
                                 enum_from_c<Behavior>(in.applied_behavior),
-                                copy_string(in.device)};
+                                copy_string(in.device),
+                                copy_string(in.session_id)};
 }
 
 const dds_topic_descriptor_t& Wire<ReleaseControlRequest>::descriptor() {

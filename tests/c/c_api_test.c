@@ -194,6 +194,7 @@ static bool request_accessors_and_release(fixture* f) {
   CHECK_OK(robotd_request_control(f->client, &request, &session));
 
   const char* uuid = NULL;
+  const char* session_id = NULL;
   const char* device = NULL;
   int32_t ids[ROBOTD_MAX_JOINTS];
   size_t count = 0;
@@ -201,6 +202,8 @@ static bool request_accessors_and_release(fixture* f) {
   robotd_behavior behavior = ROBOTD_BEHAVIOR_KEEP;
   CHECK_OK(robotd_session_uuid(session, &uuid));
   CHECK(strlen(uuid) == 36 && uuid[8] == '-' && uuid[14] == '4');
+  CHECK_OK(robotd_session_id(session, &session_id));
+  CHECK(strlen(session_id) == 8 && strspn(session_id, "0123456789abcdef") == 8 && strstr(uuid, session_id) == NULL);
   CHECK_OK(robotd_session_device(session, &device));
   CHECK(strcmp(device, "arm") == 0);
   CHECK_OK(robotd_session_motor_ids(session, ids, ROBOTD_MAX_JOINTS, &count));
@@ -239,7 +242,9 @@ static bool overlapping_request_is_refused_naming_the_holder(fixture* f) {
   robotd_session* held = acquire(f->client, held_ids, 3, ROBOTD_MODE_POSITION, ROBOTD_BEHAVIOR_DAMPING, 5000);
   CHECK(held != NULL);
   const char* uuid = NULL;
+  const char* session_id = NULL;
   CHECK_OK(robotd_session_uuid(held, &uuid));
+  CHECK_OK(robotd_session_id(held, &session_id));
 
   robotd_client* planner = connect_as(f, "planner");
   CHECK(planner != NULL);
@@ -252,7 +257,8 @@ static bool overlapping_request_is_refused_naming_the_holder(fixture* f) {
   CHECK_CALL(ROBOTD_REFUSED, robotd_request_control(planner, &request, &refused), "held by node 'c_api_test'");
   CHECK(strstr(robotd_last_error(), "robotd_request_control: robotd refused /request_control: ") ==
         robotd_last_error());
-  CHECK(strstr(robotd_last_error(), uuid) != NULL);
+  CHECK(strstr(robotd_last_error(), session_id) != NULL); /* others learn the public id, never the uuid */
+  CHECK(strstr(robotd_last_error(), uuid) == NULL);
   CHECK(strstr(robotd_last_error(), "motor(s) 2") != NULL);
   CHECK(refused == NULL);
 
@@ -345,13 +351,18 @@ static bool released_session_and_unknown_uuid_fail(fixture* f) {
              robotd_release_by_uuid(f->client, "00000000-0000-4000-8000-000000000000-and-more", ROBOTD_BEHAVIOR_KEEP),
              "uuid is 45 bytes long: expected at most 39");
 
-  /* Any session can be released by its uuid, as robotctl release does. */
+  /* A session is released by its uuid from any client that has it, as robotctl release does;
+   * its public id releases nothing. */
   session = acquire(f->client, NULL, 0, ROBOTD_MODE_POSITION, ROBOTD_BEHAVIOR_KEEP, 5000);
   CHECK(session != NULL);
   const char* uuid = NULL;
+  const char* session_id = NULL;
   CHECK_OK(robotd_session_uuid(session, &uuid));
+  CHECK_OK(robotd_session_id(session, &session_id));
   robotd_client* operator_client = connect_as(f, "operator");
   CHECK(operator_client != NULL);
+  CHECK_CALL(ROBOTD_REFUSED, robotd_release_by_uuid(operator_client, session_id, ROBOTD_BEHAVIOR_KEEP),
+             "is the public id of a session of node 'c_api_test'");
   CHECK_OK(robotd_release_by_uuid(operator_client, uuid, ROBOTD_BEHAVIOR_KEEP));
   CHECK_CALL(ROBOTD_REFUSED, robotd_release(session, ROBOTD_BEHAVIOR_KEEP), "robotd refused /release_control");
   robotd_session_free(session);
@@ -436,6 +447,7 @@ static bool invalid_arguments_are_named(fixture* f) {
              "behavior is 9: expected ROBOTD_BEHAVIOR_KEEP, ROBOTD_BEHAVIOR_DAMPING or ROBOTD_BEHAVIOR_ZERO_TORQUE");
   CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_uuid(NULL, NULL),
              "session is NULL: expected a session from robotd_request_control");
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_id(session, NULL), "session_id is NULL");
   CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_keepalive(NULL), "session is NULL");
   CHECK_OK(robotd_release(session, ROBOTD_BEHAVIOR_KEEP));
   robotd_session_free(session);

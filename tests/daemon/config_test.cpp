@@ -266,6 +266,14 @@ TEST(Config, DeviceNameMustBeAnIdentifier) {
                         "\"left arm\""));
 }
 
+// 63 characters at most: the longest device name robotd takes in a request (robotd/limits.hpp).
+TEST(Config, DeviceNameFitsWhatClientsMaySendAsADevice) {
+  EXPECT_THAT(device_errors("name", "a" + std::string(63, '1')), HasSubstr("devices[0].name: expected a name of"));
+  json document = minimal_config();
+  document["devices"][0]["name"] = "a" + std::string(62, '1');
+  EXPECT_TRUE(parse(document).ok());
+}
+
 TEST(Config, EmptyDevicesArrayIsRefused) {
   json document = minimal_config();
   document["devices"] = json::array();

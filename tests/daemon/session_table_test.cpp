@@ -13,6 +13,7 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using ::testing::Not;
 
 constexpr std::int64_t kMs = 1'000'000;
 
@@ -35,15 +36,16 @@ class SessionTableTest : public ::testing::Test {
   SessionTable one_device_{{&arm_}, SessionLimits{}};
   SessionTable two_devices_{{&arm_, &legs_}, SessionLimits{}};
 
+  // The session's public id is "id-" + its uuid here, to tell the two apart in messages.
   SessionRecord grant_ok(SessionTable& table, const RequestControlRequest& r, const std::string& uuid,
                          std::int64_t now_ns = 0) {
-    Result<SessionRecord> granted = table.grant(r, uuid, now_ns, 0);
+    Result<SessionRecord> granted = table.grant(r, uuid, "id-" + uuid, now_ns, 0);
     EXPECT_TRUE(granted.ok()) << granted.error().message;
     return granted.ok() ? granted.value() : SessionRecord{};
   }
 
   std::string refusal(SessionTable& table, const RequestControlRequest& r, std::int64_t now_ns = 0) {
-    Result<SessionRecord> granted = table.grant(r, "refused-uuid", now_ns, 0);
+    Result<SessionRecord> granted = table.grant(r, "refused-uuid", "refused-id", now_ns, 0);
     if (granted.ok()) {
       ADD_FAILURE() << "request was granted";
       return "";
@@ -63,8 +65,9 @@ TEST_F(SessionTableTest, EmptyMotorIdsClaimEveryMotorOfTheDevice) {
 TEST_F(SessionTableTest, GrantRecordsWhoHoldsWhatAndUntilWhen) {
   RequestControlRequest r = request("planner", {1, 3});
   r.timeout_ms = 250;
-  const SessionRecord record = one_device_.grant(r, "u1", 5 * kMs, 1234).value();
+  const SessionRecord record = one_device_.grant(r, "u1", "3f2a9c1e", 5 * kMs, 1234).value();
   EXPECT_EQ(record.uuid, "u1");
+  EXPECT_EQ(record.session_id, "3f2a9c1e");
   EXPECT_EQ(record.node_name, "planner");
   EXPECT_EQ(record.device, "arm");
   EXPECT_EQ(record.device_index, 0u);
@@ -77,6 +80,8 @@ TEST_F(SessionTableTest, GrantRecordsWhoHoldsWhatAndUntilWhen) {
   EXPECT_EQ(record.granted_wall_ns, 1234);
   EXPECT_EQ(record.last_command_ns, 5 * kMs);
   EXPECT_NE(one_device_.find("u1"), nullptr);
+  EXPECT_EQ(one_device_.find_by_id("3f2a9c1e"), one_device_.find("u1"));
+  EXPECT_EQ(one_device_.find("3f2a9c1e"), nullptr) << "the public id is not the capability";
   EXPECT_TRUE(one_device_.any_active(0));
 }
 
@@ -96,7 +101,8 @@ TEST_F(SessionTableTest, OverlapIsRefusedNamingHolderSessionMotorsAndTimeLeft) {
   const std::string message = refusal(one_device_, request("teleop", {3, 2, 1}), 250 * kMs);
   EXPECT_THAT(message, HasSubstr("device 'arm'"));
   EXPECT_THAT(message, HasSubstr("motor(s) 1, 2 held by node 'planner'"));
-  EXPECT_THAT(message, HasSubstr("session uuid-of-planner"));
+  EXPECT_THAT(message, HasSubstr("(session id-uuid-of-planner,"));
+  EXPECT_THAT(message, Not(HasSubstr("(session uuid-of-planner")));
   EXPECT_THAT(message, HasSubstr("750 ms left"));
   EXPECT_THAT(message, HasSubstr("timeout 1000 ms"));
   EXPECT_EQ(one_device_.sessions().size(), 1u);
@@ -231,6 +237,16 @@ TEST_F(SessionTableTest, ReleaseOfAnUnknownUuidIsRefused) {
   EXPECT_EQ(released.error().code, ErrorCode::kRefused);
   EXPECT_THAT(released.error().message, HasSubstr("no active session has uuid 'no-such-uuid'"));
   EXPECT_TRUE(one_device_.any_active(0));
+}
+
+TEST_F(SessionTableTest, ThePublicIdReleasesNothingAndTheRefusalSaysWhy) {
+  grant_ok(one_device_, request("teleop", {0}), "u1");
+  const Result<SessionRecord> released = one_device_.release("id-u1");
+  ASSERT_FALSE(released.ok());
+  EXPECT_THAT(released.error().message,
+              HasSubstr("'id-u1' is the public id of a session of node 'teleop' on 'arm', not a uuid"));
+  EXPECT_THAT(released.error().message, Not(HasSubstr("'u1'")));
+  EXPECT_NE(one_device_.find("u1"), nullptr);
 }
 
 TEST_F(SessionTableTest, EndWithAStaleGenerationLeavesTheSlotsNewSessionAlone) {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "robotd_fixture.hpp"
-#include "session/session_uuid.hpp"
+#include "session/session_ids.hpp"
 
 namespace robotd::testing {
 namespace {

@@ -92,7 +92,9 @@ TEST_F(SessionTest, OverlapRefusedNamingHolderDisjointGranted) {
   ASSERT_FALSE(overlap);
   EXPECT_EQ(overlap.error().code, ErrorCode::kRefused);
   EXPECT_NE(overlap.error().message.find("held by node 'teleop'"), std::string::npos) << overlap.error().message;
-  EXPECT_NE(overlap.error().message.find(held.value().uuid()), std::string::npos) << overlap.error().message;
+  EXPECT_NE(overlap.error().message.find("session " + held.value().session_id()), std::string::npos)
+      << overlap.error().message;
+  EXPECT_EQ(overlap.error().message.find(held.value().uuid()), std::string::npos) << overlap.error().message;
   EXPECT_NE(overlap.error().message.find("motor(s) 2"), std::string::npos) << overlap.error().message;
 
   auto disjoint = second.request_control(arm_request({3, 4, 5}));
@@ -199,7 +201,9 @@ TEST_F(SessionTest, ResetZeroRefusedWhileSessionActiveAndWorksWithout) {
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().code, ErrorCode::kRefused);
   EXPECT_NE(refused.error().message.find("session is active"), std::string::npos) << refused.error().message;
-  EXPECT_NE(refused.error().message.find(session.value().uuid()), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("session " + session.value().session_id()), std::string::npos)
+      << refused.error().message;
+  EXPECT_EQ(refused.error().message.find(session.value().uuid()), std::string::npos) << refused.error().message;
 
   ASSERT_TRUE(session.value().release(Behavior::kKeep));
   std::this_thread::sleep_for(50ms);

@@ -51,6 +51,20 @@ TEST(Qos, ServiceIsTheRosServicesProfile) {
   EXPECT_EQ(durability_of(qos.get()), DDS_DURABILITY_VOLATILE);
 }
 
+TEST(Qos, AServersRequestReaderKeepsEveryRequestUpToItsPendingLimit) {
+  const QosPtr qos = service_request_reader_qos();
+  dds_reliability_kind_t reliability{};
+  ASSERT_TRUE(dds_qget_reliability(qos.get(), &reliability, nullptr));
+  EXPECT_EQ(reliability, DDS_RELIABILITY_RELIABLE);
+  EXPECT_EQ(durability_of(qos.get()), DDS_DURABILITY_VOLATILE);
+  dds_history_kind_t history{};
+  ASSERT_TRUE(dds_qget_history(qos.get(), &history, nullptr));
+  EXPECT_EQ(history, DDS_HISTORY_KEEP_ALL);
+  int32_t max_samples = 0;
+  ASSERT_TRUE(dds_qget_resource_limits(qos.get(), &max_samples, nullptr, nullptr));
+  EXPECT_EQ(max_samples, kPendingRequestsPerService);
+}
+
 TEST(Qos, TransientLocalKeepsItsDepthForLateJoiners) {
   const QosPtr qos = transient_local_qos(3);
   expect_reliable_keep_last(qos.get(), 3);

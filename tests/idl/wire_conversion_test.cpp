@@ -58,9 +58,13 @@ inline auto fields(const Joy& m) {
                   m.dpad_vertical, m.a, m.b, m.x, m.y, m.lb, m.rb, m.back, m.start, m.center, m.l, m.r, m.header);
 }
 inline auto fields(const PolicyData& m) { return std::tie(m.header, m.data_type, m.data); }
+inline auto fields(const ServiceCounters& m) { return std::tie(m.service, m.requests, m.refused, m.oversized); }
+inline auto fields(const SurfaceCounters& m) {
+  return std::tie(m.commands_unattributed, m.dds_log_messages, m.services);
+}
 inline auto fields(const SessionStatus& m) {
   return std::tie(m.header, m.state, m.policy_name, m.policy_file_name, m.active_uuids, m.node_names, m.motor_counts,
-                  m.sessions);
+                  m.sessions, m.surface);
 }
 inline auto fields(const DeviceStatus& m) {
   return std::tie(m.header, m.device, m.driver, m.state, m.state_text, m.fault_code, m.fault_text, m.estop_engaged,
@@ -71,7 +75,7 @@ inline auto fields(const RequestControlRequest& m) {
                   m.default_kd, m.device);
 }
 inline auto fields(const RequestControlResponse& m) {
-  return std::tie(m.success, m.message, m.uuid, m.motor_ids, m.applied_behavior, m.device);
+  return std::tie(m.success, m.message, m.uuid, m.motor_ids, m.applied_behavior, m.device, m.session_id);
 }
 inline auto fields(const ReleaseControlRequest& m) { return std::tie(m.node_name, m.uuid, m.release_mode); }
 inline auto fields(const ReleaseControlResponse& m) { return std::tie(m.success, m.message, m.applied_behavior); }
@@ -189,7 +193,8 @@ SessionStatus sample() {
                        {"uuid-1", "uuid-2"},
                        {"node-1", "node-2"},
                        {2, 2},
-                       {session(1), session(2)}};
+                       {session(1), session(2)},
+                       {41, 42, {{"request_control", 43, 44, 45}, {"estop", 46, 47, 48}}}};
 }
 template <>
 DeviceStatus sample() {
@@ -216,7 +221,7 @@ RequestControlRequest sample() {
 }
 template <>
 RequestControlResponse sample() {
-  return RequestControlResponse{true, "granted", "uuid-9", {3, 4}, Behavior::kDamping, "arm"};
+  return RequestControlResponse{true, "granted", "uuid-9", {3, 4}, Behavior::kDamping, "arm", "3f2a9c1e"};
 }
 template <>
 ReleaseControlRequest sample() {

@@ -207,6 +207,7 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   status.node_names = {"node"};
   status.motor_counts = {2};
   status.sessions = {session};
+  status.surface = SurfaceCounters{9, 10, {ServiceCounters{"estop", 11, 12, 13}}};
   ASSERT_TRUE(writer.value().write(status));
 
   Xcdr1 expected;
@@ -215,7 +216,8 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   expected.count(1);  // sessions
   expected.string("u1").string("node").string("arm").count(2).i32(3).i32(4);
   expected.i32(2).i32(1).i32(0).i32(500).i32(250).i32(7).u32(8);
-  expected.u64(0x0102030405060708);  // 8-aligned relative to the body start
+  expected.u64(0x0102030405060708);                                          // 8-aligned relative to the body start
+  expected.u64(9).u64(10).count(1).string("estop").u64(11).u64(12).u64(13);  // surface, after the PI Plus fields
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(raw.reader.get())));
 }
 
@@ -365,10 +367,12 @@ TEST(WireLayout, ServiceServerEchoesTheRequestHeaderInItsReply) {
   response.motor_ids = {1, 2};
   response.applied_behavior = Behavior::kDamping;
   response.device = "arm";
+  response.session_id = "id";
   ASSERT_TRUE(server.value()->reply(*received, response));
 
   Xcdr1 expected;
   expected.u64(kGuid).i64(kSequence).boolean(true).string("ok").string("u").count(2).i32(1).i32(2).i32(1).string("arm");
+  expected.string("id");
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(replies.reader.get())));
 }
 

@@ -43,7 +43,7 @@ class WithoutRobotdTest(unittest.TestCase):
     """What a caller gets before anything reaches robotd."""
 
     def test_versions(self):
-        self.assertEqual(robotd.C_API_VERSION, 1)
+        self.assertEqual(robotd.C_API_VERSION, 2)
         self.assertRegex(robotd.__version__, r"^\d+\.\d+\.\d+$")
 
     def test_no_robotd_on_the_domain_is_not_available_and_says_what_to_check(self):
@@ -101,6 +101,9 @@ class ClientTest(unittest.TestCase):
             self.assertEqual(session.motors, (0, 1))
             self.assertEqual(session.mode, robotd.Mode.POSITION)
             self.assertRegex(session.uuid, r"^[0-9a-f-]{36}$")
+            self.assertRegex(session.session_id, r"^[0-9a-f]{8}$")
+            self.assertNotIn(session.session_id, session.uuid)
+            self.assertNotIn(session.uuid, repr(session))
             deadline = time.monotonic() + 5
             while time.monotonic() < deadline:
                 session.command(positions=target)
@@ -207,6 +210,9 @@ class ClientTest(unittest.TestCase):
     def test_release_by_uuid_frees_a_session_held_by_another_client(self):
         with robotd.Client(self.daemon.domain_id, node_name="other") as other:
             held = other.session(device="arm", motors=[1], timeout=5.0)
+            with self.assertRaises(robotd.Refused) as raised:
+                self.client.release(held.session_id, "keep")
+            self.assertIn("is the public id of a session of node 'other'", str(raised.exception))
             self.client.release(held.uuid, "keep")
             with self.client.session(device="arm", motors=[1]):
                 pass
@@ -223,7 +229,7 @@ class ExampleTest(unittest.TestCase):
                                     text=True, timeout=60,
                                     env=dict(os.environ, ROBOTD_DOMAIN_ID=str(daemon.domain_id)))
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr + daemon.log())
-        self.assertRegex(result.stdout, r"session [0-9a-f-]{36} on 6 motors")
+        self.assertRegex(result.stdout, r"session [0-9a-f]{8} on 6 motors")
         moves = [float(moved) for moved in
                  (line.split("->")[1].split()[0] for line in result.stdout.splitlines() if "->" in line)]
         self.assertEqual(len(moves), 6, result.stdout)

@@ -206,9 +206,12 @@ class RecordTest(RobotdTestCase):
         self.assertRegex(commands[0].session, r"^[0-9a-f]{8}$")
         for joint, (position, target) in enumerate(zip(commands[-1].positions, FIRST_TARGET)):
             self.assertAlmostEqual(position, target, delta=1e-6, msg=f"joint {joint}")
-        # The session's uuid is in the status only as far as robotd's log shows it: its first 8 characters.
-        uuids = [session["uuid"] for status in self.contents.session_status for session in status.message["sessions"]]
-        self.assertIn(commands[0].session, uuids)
+        # The status names the session by its public id, which tells nothing of the uuid the
+        # commands carry (their tag is its first 8 hex digits).
+        ids = [session["uuid"] for status in self.contents.session_status for session in status.message["sessions"]]
+        self.assertTrue(ids)
+        self.assertTrue(all(re.fullmatch(r"[0-9a-f]{8}", session_id) for session_id in ids), ids)
+        self.assertNotIn(commands[0].session, ids)
 
     def test_truncated_file_reads_up_to_the_last_complete_record(self):
         truncated = self.path("truncated.rdrec")

@@ -139,14 +139,14 @@ class RobotctlTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, f"stdout:\n{result.stdout}\nstderr:\n{result.stderr}")
 
     def acquire(self, *args):
-        """Starts `robotctl acquire arm ARGS`; returns (process, uuid) once it holds the session."""
+        """Starts `robotctl acquire arm ARGS`; returns (process, uuid, public session id) once it holds the session."""
         process = self.start_robotctl("acquire", "arm", *args)
         line = read_line(process.stdout)
-        match = re.match(r"uuid (\S+)", line)
+        match = re.match(r"uuid (\S+)  session ([0-9a-f]{8})  ", line)
         if not match:
             process.kill()
             self.fail(f"acquire printed {line!r}; stderr: {process.communicate()[1]}")
-        return process, match.group(1)
+        return process, match.group(1), match.group(2)
 
     def poll_robotctl(self, *args, until, timeout_s=3.0):
         """Runs robotctl ARGS until its output satisfies `until` or the timeout passes; returns the last output.
@@ -180,10 +180,15 @@ class RobotctlTest(unittest.TestCase):
         self.assertRegex(result.stdout, r"execution\s+p50 [\d.]+\s+p99 [\d.]+\s+max [\d.]+ µs")
         self.assertRegex(result.stdout, r"\d+ ticks, \d+ overruns")
         self.assertIn("sessions", result.stdout)
+        self.assertRegex(result.stdout, r"dds surface\n  commands\s+0 commands named no active session")
+        self.assertRegex(result.stdout, r"requests\s+request_control \d+( \(\d+ refused\))?, release_control \d+")
 
         status = json.loads(self.robotctl("status", "--json").stdout)
         self.assertEqual(status["devices"][0]["state"], "RUNNING")
         self.assertGreater(status["devices"][0]["loop"]["ticks"], 0)
+        services = [service["service"] for service in status["sessions"]["surface"]["services"]]
+        self.assertEqual(services, ["request_control", "release_control", "get_available_motors", "reset_zero",
+                                    "estop", "list_devices", "device_call"])
 
     def test_move_arrives_and_joint_states_show_the_target(self):
         target = [0.3, -0.2, 0.1, 0.0, 0.25, -0.1]
@@ -210,24 +215,30 @@ class RobotctlTest(unittest.TestCase):
                       self.poll_robotctl("sessions", until=lambda out: "no active sessions" in out))
 
     def test_acquire_holds_a_session_that_release_by_uuid_ends(self):
-        process, uuid = self.acquire("--motors", "0,1", "--timeout-ms", "500")
-        sessions = self.poll_robotctl("sessions", until=lambda out: uuid in out)
-        self.assertRegex(sessions, rf"{uuid}\s+robotctl\s+arm\s+0-1\s+POSITION")
+        process, uuid, session_id = self.acquire("--motors", "0,1", "--timeout-ms", "500")
+        sessions = self.poll_robotctl("sessions", until=lambda out: session_id in out)
+        self.assertRegex(sessions, rf"{session_id}\s+robotctl\s+arm\s+0-1\s+POSITION")
+        self.assertNotIn(uuid, sessions)
+        self.assertNotIn(uuid, self.robotctl("sessions", "--json").stdout)
 
+        by_id = self.robotctl("release", session_id)
+        self.assertEqual(by_id.returncode, 1)
+        self.assertIn("is the public id of a session of node 'robotctl'", by_id.stderr)
         released = self.robotctl("release", uuid)
         self.assertSucceeded(released)
         self.assertIn("released 2 motor(s)", released.stdout)
         # The holder notices robotd no longer lists its session, and says so.
         self.assertEqual(process.wait(timeout=10), 1)
         self.assertIn("has ended", process.stderr.read())
-        self.assertNotIn(uuid, self.poll_robotctl("sessions", until=lambda out: uuid not in out))
+        self.assertNotIn(session_id, self.poll_robotctl("sessions", until=lambda out: session_id not in out))
 
     def test_second_acquire_on_the_same_motors_is_refused_naming_the_holder(self):
-        holder, uuid = self.acquire("--motors", "2,3", "--node-name", "first-holder")
+        holder, uuid, session_id = self.acquire("--motors", "2,3", "--node-name", "first-holder")
         refused = self.robotctl("acquire", "arm", "--motors", "3,4")
         self.assertEqual(refused.returncode, 1)
         self.assertIn("first-holder", refused.stderr)
-        self.assertIn(uuid, refused.stderr)
+        self.assertIn(f"session {session_id}", refused.stderr)
+        self.assertNotIn(uuid, refused.stderr)
 
         holder.send_signal(signal.SIGINT)
         self.assertEqual(holder.wait(timeout=10), 0)

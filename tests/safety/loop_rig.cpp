@@ -258,7 +258,7 @@ class LoopRig {
     if (event.default_kp >= 0) request.default_kp.assign(motor_count, static_cast<float>(event.default_kp));
     if (event.default_kd >= 0) request.default_kd.assign(motor_count, static_cast<float>(event.default_kd));
     const std::string uuid = "uuid-" + std::to_string(event.label) + "-" + std::to_string(tick_);
-    auto granted = sessions_.grant(request, uuid, between_ticks_ns(), 0);
+    auto granted = sessions_.grant(request, uuid, "id-" + std::to_string(event.label), between_ticks_ns(), 0);
     if (!granted) return;
     const session::SessionRecord& record = granted.value();
     if (!channel_->post(service::session_start_event(record))) {

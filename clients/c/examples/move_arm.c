@@ -54,12 +54,12 @@ static int move(robotd_session* session, const robotd_joint_state* start, size_t
 /* Everything between acquiring the arm and releasing it. */
 static int move_and_report(robotd_client* client, robotd_session* session) {
   static robotd_joint_state start, end; /* about 6 KB each: not on the stack */
-  const char* uuid = NULL;
+  const char* session_id = NULL;
   int32_t motor_ids[ROBOTD_MAX_JOINTS];
   size_t joints = 0;
-  robotd_session_uuid(session, &uuid);
+  robotd_session_id(session, &session_id);
   robotd_session_motor_ids(session, motor_ids, ROBOTD_MAX_JOINTS, &joints);
-  printf("session %s on %zu motors\n", uuid, joints);
+  printf("session %s on %zu motors\n", session_id, joints);
 
   if (robotd_next_joint_state(client, "arm", 2000, &start) != ROBOTD_OK) return fail("no joint state");
   if (move(session, &start, joints) != 0) return 1;

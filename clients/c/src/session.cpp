@@ -76,6 +76,13 @@ robotd_status robotd_session_uuid(const robotd_session* session, const char** uu
   });
 }
 
+robotd_status robotd_session_id(const robotd_session* session, const char** session_id) {
+  return guarded("robotd_session_id", [&] {
+    const auto& handle = session_handle(session);
+    require(session_id, "session_id", "a const char* to store the public id in") = handle.session.session_id().c_str();
+  });
+}
+
 robotd_status robotd_session_device(const robotd_session* session, const char** device) {
   return guarded("robotd_session_device", [&] {
     const auto& handle = session_handle(session);

@@ -28,7 +28,7 @@ int main() {
     std::fprintf(stderr, "no control: %s\n", session.error().message.c_str());
     return 1;
   }
-  std::printf("session %s on %zu motors\n", session.value().uuid().c_str(), session.value().motor_ids().size());
+  std::printf("session %s on %zu motors\n", session.value().session_id().c_str(), session.value().motor_ids().size());
 
   const auto start = client.value().next_joint_state("arm", 2s);
   if (!start) {

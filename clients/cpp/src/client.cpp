@@ -90,8 +90,7 @@ Result<Session> Client::request_control(const SessionRequest& request) {
   auto response = core_->request_control.call(wire_request, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/request_control", response.value().message);
-  return Session(core_, response.value().uuid, response.value().device, request, response.value().motor_ids,
-                 response.value().applied_behavior);
+  return Session(core_, std::move(response.value()), request);
 }
 
 Result<ReleaseControlResponse> Client::release_control(const std::string& uuid, Behavior release_mode) {

@@ -15,14 +15,15 @@ std::int64_t clock_ns(clockid_t clock) {
 
 }  // namespace
 
-Session::Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, std::string device,
-                 const SessionRequest& request, std::vector<std::int32_t> motor_ids, Behavior applied_behavior)
+Session::Session(std::shared_ptr<detail::ClientCore> core, RequestControlResponse granted,
+                 const SessionRequest& request)
     : core_(std::move(core)),
-      uuid_(std::move(uuid)),
-      device_(std::move(device)),
-      motor_ids_(std::move(motor_ids)),
+      uuid_(std::move(granted.uuid)),
+      session_id_(std::move(granted.session_id)),
+      device_(std::move(granted.device)),
+      motor_ids_(std::move(granted.motor_ids)),
       mode_(request.mode),
-      applied_behavior_(applied_behavior),
+      applied_behavior_(granted.applied_behavior),
       release_behavior_(request.on_release),
       timeout_(request.timeout),
       last_sent_(std::chrono::steady_clock::now()) {}
@@ -34,6 +35,7 @@ Session& Session::operator=(Session&& other) noexcept {
     if (active()) (void)release(release_behavior_);
     core_ = std::move(other.core_);
     uuid_ = std::move(other.uuid_);
+    session_id_ = std::move(other.session_id_);
     device_ = std::move(other.device_);
     motor_ids_ = std::move(other.motor_ids_);
     mode_ = other.mode_;

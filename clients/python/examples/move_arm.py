@@ -17,7 +17,7 @@ def main():
         start = client.joint_state("arm", timeout=2.0)
         # Every motor of "arm"; if this program stops sending for 500 ms, robotd damps the arm.
         with client.session(device="arm", mode="position", on_timeout="damping", timeout=0.5) as session:
-            print(f"session {session.uuid} on {len(session.motors)} motors")
+            print(f"session {session.session_id} on {len(session.motors)} motors")
             # Stream a smooth 2-second move (cosine blend) of every joint by +0.5 rad, at 100 Hz.
             # robotd rate-limits and interpolates it into its 1 kHz loop.
             t0 = time.monotonic()

@@ -8,7 +8,7 @@ from ctypes import c_size_t, c_uint64, c_void_p
 from . import errors
 from .types import DeviceInfo, DeviceState, DeviceStatus, JointState
 
-C_API_VERSION = 1  # the robotd/robotd.h this module mirrors
+C_API_VERSION = 2  # the robotd/robotd.h this module mirrors
 MAX_JOINTS = 64
 NAME_CAPACITY = 64
 UUID_CAPACITY = 40
@@ -74,6 +74,7 @@ _PROTOTYPES = {
     "robotd_session_request_init": (_Status, [POINTER(SessionRequest)]),
     "robotd_request_control": (_Status, [_Handle, POINTER(SessionRequest), POINTER(_Handle)]),
     "robotd_session_uuid": (_Status, [_Handle, POINTER(c_char_p)]),
+    "robotd_session_id": (_Status, [_Handle, POINTER(c_char_p)]),
     "robotd_session_device": (_Status, [_Handle, POINTER(c_char_p)]),
     "robotd_session_motor_ids": (_Status, [_Handle, POINTER(c_int32), c_size_t, POINTER(c_size_t)]),
     "robotd_session_mode": (_Status, [_Handle, POINTER(_Enum)]),

@@ -114,7 +114,8 @@ class Client:
         return Session(device, motors, client=self, **options)
 
     def release(self, uuid, behavior=Behavior.KEEP):
-        """Releases any session by its uuid (like robotctl release), e.g. one whose client died."""
+        """Releases the session with this uuid (like robotctl release), e.g. one an earlier run of this
+        program was granted and whose uuid it kept. A public session id releases nothing."""
         check(lib.robotd_release_by_uuid(self.handle, optional_text(uuid), Behavior.parse(behavior)))
 
     # ---- safety and device operations ------------------------------------------------------------

@@ -71,7 +71,7 @@ class Command:
     time_ns: int  # receive time, ns since the recording began
     device: str  # None when robotctl could not tell
     stamp_ns: int  # the sender's stamp, CLOCK_REALTIME
-    session: str  # the first 8 hex digits of the session's uuid
+    session: str  # the first 8 hex digits of the session's uuid (not its public id)
     motor_ids: tuple
     positions: tuple  # rad
     velocities: tuple  # rad/s
@@ -82,8 +82,8 @@ class Command:
 
 @dataclass(frozen=True)
 class Status:
-    """A /session_status or /device_status sample, as robotctl echo --json prints it (session
-    uuids cut to their first 8 characters)."""
+    """A /session_status or /device_status sample, as robotctl echo --json prints it (sessions
+    named by their public ids)."""
     time_ns: int  # receive time, ns since the recording began
     message: dict
 

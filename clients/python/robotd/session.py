@@ -49,7 +49,8 @@ class Session:
         handle = c_void_p()
         check(lib.robotd_request_control(self._client.handle, byref(request), byref(handle)))
         self._handle = handle
-        self.uuid = self._text(lib.robotd_session_uuid)
+        self.uuid = self._text(lib.robotd_session_uuid)  # the capability: keep it to this program
+        self.session_id = self._text(lib.robotd_session_id)  # the public id others see
         self.device = self._text(lib.robotd_session_device)
         self.motors = self._motor_ids()
         self.mode = Mode(self._enum(lib.robotd_session_mode))
@@ -107,7 +108,7 @@ class Session:
 
     def _live_handle(self):
         if self._handle is None:
-            raise ValueError(f"session {getattr(self, 'uuid', '')} is closed")
+            raise ValueError(f"session {getattr(self, 'session_id', '')} is closed")
         return self._handle
 
     def _close_own_client(self):
@@ -125,4 +126,5 @@ class Session:
             self.close()
 
     def __repr__(self):
-        return f"Session({self.device!r}, motors={list(self.motors)}, mode={self.mode.name}, uuid={self.uuid!r})"
+        return (f"Session({self.device!r}, motors={list(self.motors)}, mode={self.mode.name}, "
+                f"session_id={self.session_id!r})")

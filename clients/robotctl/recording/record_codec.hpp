@@ -13,7 +13,7 @@
 namespace robotctl::recording {
 
 /// The device index of a command whose device robotctl could not tell (no device field, and
-/// its session was not in /session_status).
+/// robotd serves several devices).
 inline constexpr std::uint16_t kUnknownDevice = 0xFFFF;
 
 /// device u16, stamp_ns i64, then position, velocity and effort as f64 arrays (u16 count, values).
@@ -46,9 +46,10 @@ std::optional<JointStateRecord> decode_joint_state(std::string_view payload);
 std::optional<ControlCommandRecord> decode_control_command(std::string_view payload);
 
 /// A session uuid's first 8 hex digits as a number (0 if they are not hex): enough to tell the
-/// sessions of a recording apart and to match robotd's log, too little to command with.
+/// sessions of a recording apart, too little to command with (the other 90 random bits stay
+/// unknown). Unrelated to the public session id /session_status and robotd's log show.
 std::uint32_t session_tag(std::string_view uuid);
-/// The tag as robotd's log shows it: 8 lowercase hex digits.
+/// The tag as 8 lowercase hex digits.
 std::string session_tag_text(std::uint32_t tag);
 
 }  // namespace robotctl::recording

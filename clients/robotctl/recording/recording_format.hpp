@@ -33,7 +33,7 @@ inline constexpr std::uint32_t kLargestPayloadBytes = 16U << 20U;
 enum class RecordKind : std::uint8_t {
   kJointState = 1,      // binary, record_codec.hpp
   kControlCommand = 2,  // binary, record_codec.hpp
-  kSessionStatus = 3,   // JSON, session uuids cut to their first 8 characters
+  kSessionStatus = 3,   // JSON (sessions named by their public ids)
   kDeviceStatus = 4,    // JSON
   kEnd = 255,           // no payload; the recording was closed, not cut off
 };

@@ -31,7 +31,9 @@ Verb add_status_verb(CLI::App& app) {
   command->add_flag("--json", *json, "Print {\"devices\": [DeviceStatus...], \"sessions\": SessionStatus} as JSON");
   command->footer(
       "Per device: state, fault, e-stop, control-loop timing (wake latency, execution time, period, overruns), "
-      "commands received and accepted and every non-zero rejection by reason; then the active sessions.\n\n"
+      "commands received and accepted and every non-zero rejection by reason; then the active sessions; then what "
+      "robotd's DDS surface counted: commands that named no active session and no known device, each service's "
+      "requests, refusals and oversized requests, and the DDS layer's warnings.\n\n"
       "Example:\n  robotctl status\n  robotctl status --json");
   return Verb{
       command, false, [json](VerbContext& context) {
@@ -55,7 +57,9 @@ Verb add_status_verb(CLI::App& app) {
         if (*json) {
           std::cout << pretty_text(Json{{"devices", device_statuses}, {"sessions", to_json(sessions.value())}}) << "\n";
         } else {
-          std::cout << "sessions\n" << session_table(sessions.value());
+          std::cout << "sessions\n"
+                    << session_table(sessions.value()) << "\n"
+                    << surface_text(sessions.value().surface);
         }
         return status;
       }};
@@ -66,7 +70,8 @@ Verb add_sessions_verb(CLI::App& app) {
   CLI::App* command = app.add_subcommand("sessions", "List the active control sessions");
   command->add_flag("--json", *json, "Print robotd's /session_status as JSON");
   command->footer(
-      "One row per session: uuid, node, device, motors, mode, timeout fallback (requested → applied when the "
+      "One row per session: public session id (not the uuid, which only the session's holder knows), node, "
+      "device, motors, mode, timeout fallback (requested → applied when the "
       "device cannot do what was asked), time left before it fires, commands accepted.\n\n"
       "Example:\n  robotctl sessions");
   return Verb{command, false, [json](VerbContext& context) {

@@ -85,15 +85,15 @@ int record(VerbContext& context, const RecordOptions& options) {
   const recording::Description description = describe(options, devices.value(), client_options.domain_id);
   auto writer = recording::RecordingWriter::create(options.path, description);
   if (!writer) return report_failure(writer.error().message);
-  RecordingSink sink(std::move(writer.value()), description, options.device.empty());
+  RecordingSink sink(std::move(writer.value()), description, options.device.empty(),
+                     devices.value().size() == 1 ? devices.value().front().name : "");
 
   robotd::Client& client = context.client;
-  const bool record_sessions = wants(options, "session_status");
   std::vector<std::pair<std::string, robotd::Subscription>> subscriptions;
-  // Always: the sessions tell which device a command that names none is for.
-  subscriptions.emplace_back("session_status", client.on_session_status([&sink, record_sessions](const auto& status) {
-    sink.add(status, record_sessions);
-  }));
+  if (wants(options, "session_status")) {
+    subscriptions.emplace_back(
+        "session_status", client.on_session_status([&sink](const robotd::SessionStatus& status) { sink.add(status); }));
+  }
   if (wants(options, "joint_states")) {
     subscriptions.emplace_back("joint_states",
                                client.on_joint_states([&sink](const robotd::JointState& state) { sink.add(state); }));

@@ -1,4 +1,4 @@
-// acquire and release: hold a control session from the shell, and end any session by its uuid.
+// acquire and release: hold a control session from the shell, and end a session by its uuid.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -15,13 +15,15 @@
 namespace robotctl {
 namespace {
 
-// Notices when robotd stops listing a session: another client released it, or it timed out.
+// Notices when robotd stops listing a session (by its public id: /session_status never shows a
+// uuid): it was released with its uuid elsewhere, or it timed out.
 class SessionPresence {
  public:
-  SessionPresence(robotd::Client& client, std::string uuid, StopSignals& stop) : uuid_(std::move(uuid)) {
+  SessionPresence(robotd::Client& client, std::string session_id, StopSignals& stop)
+      : session_id_(std::move(session_id)) {
     subscription_ = client.on_session_status([this, &stop](const robotd::SessionStatus& status) {
       bool listed = false;
-      for (const auto& session : status.sessions) listed = listed || session.uuid == uuid_;
+      for (const auto& session : status.sessions) listed = listed || session.uuid == session_id_;
       // A sample published before the grant does not list it yet; only a disappearance counts.
       if (listed) {
         seen_ = true;
@@ -37,7 +39,7 @@ class SessionPresence {
   bool ended() const { return ended_; }
 
  private:
-  std::string uuid_;
+  std::string session_id_;
   std::atomic<bool> seen_{false};
   std::atomic<bool> ended_{false};
   robotd::Subscription subscription_;  // last: its callbacks stop before the members they use go
@@ -49,8 +51,8 @@ struct AcquireOptions {
 };
 
 std::string grant_text(const robotd::Session& session, const robotd::SessionRequest& request) {
-  return "uuid " + session.uuid() + "  device " + session.device() + "  motors " + id_ranges(session.motor_ids()) +
-         "  mode " + std::string(robotd::to_string(session.mode())) + "  on timeout " +
+  return "uuid " + session.uuid() + "  session " + session.session_id() + "  device " + session.device() + "  motors " +
+         id_ranges(session.motor_ids()) + "  mode " + std::string(robotd::to_string(session.mode())) + "  on timeout " +
          behavior_text(request.on_timeout, session.applied_timeout_behavior()) + " after " +
          std::to_string(request.timeout.count()) + " ms";
 }
@@ -60,7 +62,7 @@ int hold_session(VerbContext& context, const robotd::SessionRequest& request) {
   auto granted = context.client.request_control(request);
   if (!granted) return report_failure(granted.error(), options);
   robotd::Session& session = granted.value();
-  SessionPresence presence(context.client, session.uuid(), context.stop);
+  SessionPresence presence(context.client, session.session_id(), context.stop);
   std::cout << grant_text(session, request) << std::endl;
 
   const auto keepalive_period = std::max(request.timeout / 4, std::chrono::milliseconds(1));
@@ -71,8 +73,8 @@ int hold_session(VerbContext& context, const robotd::SessionRequest& request) {
     const StopSignals::Wake wake = context.stop.wait_until(next_keepalive);
     if (wake == StopSignals::Wake::kStopSignal) break;
     if (presence.ended()) {
-      return report_failure("session " + session.uuid() +
-                            " has ended: robotd no longer lists it (released by another client, or timed out)");
+      return report_failure("session " + session.session_id() +
+                            " has ended: robotd no longer lists it (released with its uuid elsewhere, or timed out)");
     }
     if (wake == StopSignals::Wake::kDeadline) {
       if (auto sent = session.keepalive(); !sent) return report_failure(sent.error(), options);
@@ -102,9 +104,11 @@ Verb add_acquire_verb(CLI::App& app) {
   add_behavior_option(*command, "--on-release", options->request.on_release,
                       "What robotd does to the motors when robotctl releases them on Ctrl-C");
   command->footer(
-      "Prints 'uuid <uuid>' and what was granted on one line, then sends keepalives every quarter of the timeout. "
-      "Nothing moves: use it to keep other clients off the motors. Exits 1 if robotd ends the session (another "
-      "client released it by its uuid, or it timed out).\n\n"
+      "Prints 'uuid <uuid>  session <id>' and what was granted on one line, then sends keepalives every quarter of "
+      "the timeout. Nothing moves: use it to keep other clients off the motors. The uuid is the session's "
+      "capability (it commands and releases the session) and is shown only here; robotctl sessions and robotd's "
+      "log show the public id. Exits 1 if robotd ends the session (released with its uuid elsewhere, or timed "
+      "out).\n\n"
       "Example:\n  robotctl acquire arm --motors 0,1,2 --on-timeout damping --timeout-ms 500\n"
       "  robotctl release UUID     # from another shell: ends it");
   return Verb{command, true, [options](VerbContext& context) {
@@ -120,10 +124,14 @@ Verb add_release_verb(CLI::App& app) {
   };
   auto options = std::make_shared<ReleaseOptions>();
   CLI::App* command = app.add_subcommand("release", "End a control session by its uuid");
-  command->add_option("UUID", options->uuid, "Session uuid (robotctl sessions lists them)")->required();
+  command->add_option("UUID", options->uuid, "The session's uuid, as request_control (or robotctl acquire) gave it")
+      ->required();
   add_behavior_option(*command, "--mode", options->mode, "What robotd does to the motors as they are freed");
   command->footer(
-      "Works on any session, whoever holds it: the uuid is the capability. The motors are freed with --mode.\n\n"
+      "The uuid is the session's capability: only whoever was granted the session knows it. robotctl sessions "
+      "shows public ids, which release nothing. A session you do not hold cannot be released: it ends when its "
+      "holder releases it or stops commanding it (its timeout), and robotctl estop stops its motors at once. "
+      "The motors are freed with --mode.\n\n"
       "Example:\n  robotctl release 3f1c9a2e-7b40-4d6e-9c15-a8f2e0b7d341 --mode damping");
   return Verb{command, false, [options](VerbContext& context) {
                 auto released = context.client.release_control(options->uuid, options->mode);

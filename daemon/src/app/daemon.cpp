@@ -108,6 +108,7 @@ Result<void> Daemon::start_devices() {
 }
 
 Result<void> Daemon::start_dds() {
+  dds_log_ = std::make_unique<dds::DdsLogSink>(surface_counters_);
   auto participant = wire::Participant::create(config_.dds);
   if (!participant) return participant.error();
   participant_ = std::make_unique<wire::Participant>(std::move(participant.value()));
@@ -130,7 +131,7 @@ Result<void> Daemon::start_dds() {
       device_ptrs_,
       session::SessionLimits{config_.daemon.min_session_timeout_ms, config_.daemon.max_session_timeout_ms},
       [this] { session_status_->changed(); });
-  intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_);
+  intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_, surface_counters_);
 
   const dds::StateWriters writers{.joint_states = joint_states_.get(),
                                   .imu = {.imu = imu_.get(),
@@ -151,13 +152,13 @@ Result<void> Daemon::start_dds() {
   }
   device_services_ = std::make_unique<service::DeviceServices>(device_ptrs_, boxes, observers, *sessions_);
   reconnector_ = std::make_unique<service::Reconnector>(device_ptrs_, observers);
-  auto services = dds::ServiceHost::create(*participant_, *sessions_, *device_services_);
+  auto services = dds::ServiceHost::create(*participant_, *sessions_, *device_services_, surface_counters_);
   if (!services) return services.error();
   services_ = std::move(services.value());
 
   for (auto& publisher : publishers_) publisher->start();
   reconnector_->start();
-  session_status_->start(*sessions_);
+  session_status_->start(*sessions_, surface_counters_);
   if (auto started = intake_->start(); !started) return started;
   services_->start();
   if (auto joystick = start_joystick(); !joystick) return joystick;
@@ -232,6 +233,7 @@ void Daemon::stop() {
   yesense_quat_.reset();
   yesense_imu_.reset();
   participant_.reset();
+  dds_log_.reset();
   spdlog::info("robotd stopped: every device brought to its safe stop and disconnected");
 }
 

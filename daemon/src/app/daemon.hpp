@@ -9,6 +9,7 @@
 
 #include "config/config.hpp"
 #include "dds/command_intake.hpp"
+#include "dds/dds_log_sink.hpp"
 #include "dds/service_host.hpp"
 #include "dds/session_status_publisher.hpp"
 #include "dds/state_publisher.hpp"
@@ -50,6 +51,8 @@ class Daemon {
   std::vector<std::unique_ptr<device::Device>> devices_;
   std::vector<device::Device*> device_ptrs_;
   std::vector<std::unique_ptr<device::BlackBox>> black_boxes_;
+  dds::SurfaceCounterSet surface_counters_;
+  std::unique_ptr<dds::DdsLogSink> dds_log_;  // declared before the participant, so it outlives it
   std::unique_ptr<wire::Participant> participant_;
   std::unique_ptr<wire::TopicWriter<JointState>> joint_states_;
   std::unique_ptr<wire::TopicWriter<Imu>> imu_;

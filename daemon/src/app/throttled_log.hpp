@@ -1,16 +1,18 @@
 // Warnings that can repeat at 1 kHz (a client streaming bad commands) are logged at most once
 // per interval per key, with a count of what was suppressed. A caller on a hot path passes the
-// message as a function, built only when it is logged, and a key it keeps: a suppressed warning
-// then allocates nothing.
+// message as a function, built only when it is logged, and a key it keeps: a suppressed
+// message then allocates nothing.
 #pragma once
 
 #include <chrono>
-#include <concepts>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -20,12 +22,18 @@ class ThrottledLog {
  public:
   explicit ThrottledLog(std::chrono::milliseconds interval = std::chrono::seconds(1)) : interval_(interval) {}
 
-  void warn(std::string_view key, const std::string& message) {
-    warn(key, [&message] { return message; });
+  /// `message` (text, or a callable that makes it) at warning level; see log().
+  template <class Message>
+  void warn(std::string_view key, Message&& message) {
+    log(spdlog::level::warn, key, std::forward<Message>(message));
   }
 
-  template <std::invocable MakeMessage>
-  void warn(std::string_view key, MakeMessage&& make_message) {
+  /// `message` at `level`, unless `key` was logged less than an interval ago. Keys must come
+  /// from a bounded set (a reason, a service, a place in the code), never from the network.
+  /// `message` is the text, or a callable that makes it: called only when it is logged, so a
+  /// flood of suppressed messages costs no text at all.
+  template <class Message>
+  void log(spdlog::level::level_enum level, std::string_view key, Message&& message) {
     const auto now = std::chrono::steady_clock::now();
     std::uint64_t suppressed = 0;
     {
@@ -40,14 +48,24 @@ class ThrottledLog {
       entry->second.suppressed = 0;
       entry->second.last_logged = now;
     }
+    const std::string text = make_text(std::forward<Message>(message));
     if (suppressed > 0) {
-      spdlog::warn("{} ({} similar messages suppressed)", make_message(), suppressed);
+      spdlog::log(level, "{} ({} similar messages suppressed)", text, suppressed);
     } else {
-      spdlog::warn("{}", make_message());
+      spdlog::log(level, "{}", text);
     }
   }
 
  private:
+  template <class Message>
+  static std::string make_text(Message&& message) {
+    if constexpr (std::is_invocable_v<Message>) {
+      return message();
+    } else {
+      return std::string(std::forward<Message>(message));
+    }
+  }
+
   struct Entry {
     std::chrono::steady_clock::time_point last_logged{};
     std::uint64_t suppressed = 0;

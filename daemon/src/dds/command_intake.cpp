@@ -2,9 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/log_text.hpp"
+#include "dds/field_limits.hpp"
 #include "device/command_admission.hpp"
 #include "rt/monotonic_clock.hpp"
-#include "session/session_uuid.hpp"
+#include "session/session_ids.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
 
@@ -18,8 +20,8 @@ constexpr int kCommandHistoryDepth = 64;
 }  // namespace
 
 CommandIntake::CommandIntake(const wire::Participant& participant, std::vector<device::Device*> devices,
-                             service::SessionService& sessions)
-    : participant_(participant), devices_(std::move(devices)), sessions_(sessions) {
+                             service::SessionService& sessions, SurfaceCounterSet& surface)
+    : participant_(participant), devices_(std::move(devices)), sessions_(sessions), surface_(surface) {
   for (device::Device* device : devices_) {
     counters_.push_back(std::make_unique<service::CommandCounterSet>());
     mailboxes_.push_back(std::make_unique<device::CommandMailbox>(device->channel()));
@@ -80,27 +82,31 @@ bool CommandIntake::admits(const void* sample, void* intake) {
 }
 
 void CommandIntake::reject_unknown_session(std::string_view uuid, std::string_view device_name) {
-  // Count it against the device the command names, or the only device; otherwise it cannot be
-  // attributed to any device's counters.
   const auto device = sessions_.find_device(device_name);
   if (!device) {
-    log_.warn("unattributed", [uuid] {
-      return "rejected command: session " + session::redacted_uuid(uuid) +
-             " is not active and the command names no known device";
+    surface_.commands_unattributed.fetch_add(1, std::memory_order_relaxed);
+    log_.warn("unattributed", [&] {
+      return "rejected command: uuid " + session::redacted_uuid(uuid) +
+             " is no active session and the command names no known device ('" + app::log_text(device_name) + "')";
     });
     return;
   }
   counters_[*device]->received.fetch_add(1, std::memory_order_relaxed);
-  reject(*device, control::Rejection::kUnknownSession, uuid,
-         "no active session has this uuid (request_control first; sessions end on timeout)");
+  reject(*device, control::Rejection::kUnknownSession, [&] {
+    return std::string(sessions_.is_session_id(uuid)
+                           ? "this is a session's public id, not its uuid (only the uuid request_control granted "
+                             "commands)"
+                           : "no active session has this uuid (request_control first; sessions end on timeout)") +
+           " [uuid " + session::redacted_uuid(uuid) + "]";
+  });
 }
 
-void CommandIntake::reject(std::size_t device, control::Rejection reason, std::string_view uuid,
-                           std::string_view detail) {
+template <class MakeDetail>
+void CommandIntake::reject(std::size_t device, control::Rejection reason, MakeDetail make_detail) {
   counters_[device]->count_rejection(reason);
   log_.warn(log_keys_[device][static_cast<std::size_t>(reason)], [&] {
     return "rejected command on '" + devices_[device]->model().name + "' (" + control::to_string(reason) +
-           "): " + std::string(detail) + " [session " + session::redacted_uuid(uuid) + "]";
+           "): " + make_detail();
   });
 }
 
@@ -110,21 +116,27 @@ void CommandIntake::handle(const ControlCommand& command, std::int64_t now_ns) {
     reject_unknown_session(command.uuid, command.device);
     return;
   }
+  // Who sent it, for a log line: its session's public id, never the uuid.
+  const auto sender = [&] { return " [session " + session->session_id + "]"; };
 
   const std::size_t device_index = session->device;
   device::Device& device = *devices_[device_index];
   service::CommandCounterSet& counters = *counters_[device_index];
   counters.received.fetch_add(1, std::memory_order_relaxed);
 
+  if (const std::optional<Oversize> oversize = find_oversize(command)) {
+    reject(device_index, control::Rejection::kMalformed, [&] { return oversize->describe() + sender(); });
+    return;
+  }
   if (const auto refusal = device::command_refusal(device.channel())) {
-    reject(device_index, refusal->reason, command.uuid, refusal->detail);
+    reject(device_index, refusal->reason, [&] { return refusal->detail + sender(); });
     return;
   }
 
   const control::SessionView view{device.model().name, session->mode, session->motors};
   const control::Verdict verdict = control::validate_command(command, view, device.model(), validated_);
   if (verdict.rejection) {
-    reject(device_index, *verdict.rejection, command.uuid, verdict.detail);
+    reject(device_index, *verdict.rejection, [&] { return app::log_text(verdict.detail) + sender(); });
     return;
   }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "app/throttled_log.hpp"
+#include "dds/surface_counters.hpp"
 #include "device/command_mailbox.hpp"
 #include "device/device.hpp"
 #include "service/command_counters.hpp"
@@ -27,8 +28,9 @@ namespace robotd::dds {
 
 class CommandIntake {
  public:
+  /// A command no device's counters can claim is counted in `surface`.
   CommandIntake(const wire::Participant& participant, std::vector<device::Device*> devices,
-                service::SessionService& sessions);
+                service::SessionService& sessions, SurfaceCounterSet& surface);
   CommandIntake(const CommandIntake&) = delete;
   CommandIntake& operator=(const CommandIntake&) = delete;
   ~CommandIntake();
@@ -46,12 +48,18 @@ class CommandIntake {
   /// The topic filter: true for a command under an active session's uuid; any other is
   /// rejected here. Runs on Cyclone's receive thread.
   static bool admits(const void* sample, void* intake);
+  /// Counts a command under no active session against the device it names, or the only device;
+  /// with neither, in the surface's unattributed count.
   void reject_unknown_session(std::string_view uuid, std::string_view device_name);
-  void reject(std::size_t device, control::Rejection reason, std::string_view uuid, std::string_view detail);
+  /// Counts one rejected command and logs it (rate-limited); make_detail() says why and who sent
+  /// it, and is called only when the line is logged.
+  template <class MakeDetail>
+  void reject(std::size_t device, control::Rejection reason, MakeDetail make_detail);
 
   const wire::Participant& participant_;
   std::vector<device::Device*> devices_;
   service::SessionService& sessions_;
+  SurfaceCounterSet& surface_;
   std::vector<std::unique_ptr<service::CommandCounterSet>> counters_;
   std::vector<std::array<std::string, control::kRejectionCount>> log_keys_;  // "<device>/<reason>"
   std::vector<std::unique_ptr<device::CommandMailbox>> mailboxes_;

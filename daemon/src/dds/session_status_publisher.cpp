@@ -20,8 +20,9 @@ SessionStatusPublisher::SessionStatusPublisher(wire::TopicWriter<SessionStatus> 
 
 SessionStatusPublisher::~SessionStatusPublisher() { stop(); }
 
-void SessionStatusPublisher::start(const service::SessionService& sessions) {
+void SessionStatusPublisher::start(const service::SessionService& sessions, const SurfaceCounterSet& surface) {
   sessions_ = &sessions;
+  surface_ = &surface;
   thread_ = std::thread([this] { run(); });
 }
 
@@ -41,10 +42,16 @@ void SessionStatusPublisher::stop() {
   wake_.notify_one();
   if (thread_.joinable()) thread_.join();
   if (sessions_ != nullptr) {  // the final word: usually "idle" after the devices stopped
-    (void)writer_.write(sessions_->status(rt::monotonic_now_ns()));
+    (void)writer_.write(current());
     writer_.wait_for_acks(DDS_MSECS(500));
     sessions_ = nullptr;
   }
+}
+
+SessionStatus SessionStatusPublisher::current() const {
+  SessionStatus status = sessions_->status(rt::monotonic_now_ns());
+  status.surface = surface_->snapshot();
+  return status;
 }
 
 void SessionStatusPublisher::run() {
@@ -52,7 +59,7 @@ void SessionStatusPublisher::run() {
   std::unique_lock lock(mutex_);
   while (!stopping_) {
     lock.unlock();
-    (void)writer_.write(sessions_->status(rt::monotonic_now_ns()));
+    (void)writer_.write(current());
     lock.lock();
     wake_.wait_for(lock, period_, [this] { return changed_ || stopping_; });
     changed_ = false;

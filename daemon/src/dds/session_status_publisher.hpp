@@ -1,6 +1,6 @@
-// /session_status: who holds which motors of which device, until when. Transient-local so a
-// client that joins late sees the current sessions at once; published on every change and
-// every session_status_period_ms (time_left moves).
+// /session_status: who holds which motors of which device, until when, and what the DDS
+// surface counted. Transient-local so a client that joins late sees the current sessions at
+// once; published on every change and every session_status_period_ms (time_left moves).
 #pragma once
 
 #include <atomic>
@@ -9,6 +9,7 @@
 #include <mutex>
 #include <thread>
 
+#include "dds/surface_counters.hpp"
 #include "service/session_service.hpp"
 #include "wire/topic_io.hpp"
 
@@ -22,8 +23,8 @@ class SessionStatusPublisher {
   SessionStatusPublisher& operator=(const SessionStatusPublisher&) = delete;
   ~SessionStatusPublisher();
 
-  /// Starts periodic publishing of `sessions`' status.
-  void start(const service::SessionService& sessions);
+  /// Starts periodic publishing of `sessions`' status, with `surface`'s counters.
+  void start(const service::SessionService& sessions, const SurfaceCounterSet& surface);
   /// Publishes at once (from any thread; the periodic thread does the writing).
   void changed();
   void stop();
@@ -31,10 +32,12 @@ class SessionStatusPublisher {
  private:
   SessionStatusPublisher(wire::TopicWriter<SessionStatus> writer, std::chrono::milliseconds period);
   void run();
+  SessionStatus current() const;
 
   wire::TopicWriter<SessionStatus> writer_;
   std::chrono::milliseconds period_;
   const service::SessionService* sessions_ = nullptr;
+  const SurfaceCounterSet* surface_ = nullptr;
   std::mutex mutex_;
   std::condition_variable wake_;
   bool changed_ = false;

@@ -4,9 +4,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/log_text.hpp"
 #include "dds/yesense_imu.hpp"
 #include "rt/monotonic_clock.hpp"
-#include "session/session_uuid.hpp"
 
 namespace robotd::dds {
 namespace {
@@ -118,7 +118,7 @@ void StatePublisher::handle(const device::LoopEvent& event) {
       const auto ended = sessions_.session_ended(device_index_, event.slot, event.generation);
       if (event.type == device::LoopEvent::Type::kSessionTimedOut) {
         spdlog::warn("device '{}': session {} of node '{}' timed out after {} ms without a command; motors {}", name,
-                     ended ? session::redacted_uuid(ended->uuid) : "?", ended ? ended->node_name : "?",
+                     ended ? ended->session_id : "?", ended ? app::log_text(ended->node_name) : "?",
                      event.silence_ns / rt::kNsPerMs, to_string(event.behavior));
       } else {
         spdlog::info("device '{}': session in slot {} {}; motors {}", name, event.slot, session_end_text(event.type),

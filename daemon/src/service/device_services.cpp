@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/log_text.hpp"
 #include "rt/monotonic_clock.hpp"
 #include "service/call_arguments.hpp"
 
@@ -94,7 +95,9 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
     if (!index) return EstopResponse{false, index.error().message};
     targets.push_back(index.value());
   }
-  const std::string who = request.node_name.empty() ? "(unnamed)" : request.node_name;
+  // Client text reaches the log and DeviceStatus.state_text bounded and escaped.
+  const std::string who = request.node_name.empty() ? "(unnamed)" : app::log_text(request.node_name);
+  const std::string reason = app::log_text(request.reason);
   if (!request.engage) {
     for (const std::size_t i : targets) {
       if (devices_[i]->channel().estop_input_pressed.load(std::memory_order_acquire)) {
@@ -117,7 +120,7 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
   std::vector<bool> already(targets.size());
   for (std::size_t t = 0; t < targets.size(); ++t) {
     device::Device& device = *devices_[targets[t]];
-    device.set_estop_note("engaged by '" + who + "'" + (request.reason.empty() ? "" : ": " + request.reason));
+    device.set_estop_note("engaged by '" + who + "'" + (reason.empty() ? "" : ": " + reason));
     already[t] = device.channel().estop.exchange(true, std::memory_order_acq_rel);
   }
   // The e-stop is latched now; say whether each device has been reached (its loop wrote the
@@ -156,7 +159,7 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
   if (!unreached.empty()) {
     message += "; NOT confirmed on " + unreached + ": robotd cannot reach it now and keeps sending the e-stop every tick";
   }
-  spdlog::warn("{}{}", message, request.reason.empty() ? "" : " (" + request.reason + ")");
+  spdlog::warn("{}{}", message, reason.empty() ? "" : " (" + reason + ")");
   return EstopResponse{true, message};
 }
 

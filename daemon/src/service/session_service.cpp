@@ -2,9 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include "app/log_text.hpp"
 #include "rt/monotonic_clock.hpp"
 #include "service/session_events.hpp"
-#include "session/session_uuid.hpp"
+#include "session/session_ids.hpp"
 
 namespace robotd::service {
 namespace {
@@ -65,7 +66,10 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
       response.message = refusal;
       return response;
     }
-    auto granted = table_.grant(request, session::random_session_uuid(), rt::monotonic_now_ns(), rt::realtime_now_ns());
+    std::string session_id = session::random_session_id();
+    while (table_.find_by_id(session_id) != nullptr) session_id = session::random_session_id();
+    auto granted = table_.grant(request, session::random_session_uuid(), std::move(session_id), rt::monotonic_now_ns(),
+                                rt::realtime_now_ns());
     if (!granted) {
       response.message = granted.error().message;
       return response;
@@ -83,6 +87,7 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
     response.motor_ids = record.motor_ids;
     response.applied_behavior = record.applied_behavior;
     response.device = record.device;
+    response.session_id = record.session_id;
     response.message = "granted " + std::to_string(record.motor_ids.size()) + " motor(s) of '" + record.device +
                        "' in " + std::string(to_string(record.mode)) + " mode; on timeout (" +
                        std::to_string(record.timeout_ms) + " ms) " + std::string(to_string(record.applied_behavior));
@@ -90,7 +95,7 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
       response.message +=
           " (" + std::string(to_string(record.requested_behavior)) + " is not supported by this device)";
     }
-    spdlog::info("session {} granted to node '{}': {}", session::redacted_uuid(record.uuid), record.node_name,
+    spdlog::info("session {} granted to node '{}': {}", record.session_id, app::log_text(record.node_name),
                  response.message);
   }
   on_change_();
@@ -118,14 +123,14 @@ ReleaseControlResponse SessionService::release_control(const ReleaseControlReque
     if (!device.channel().post(session_release_event(record, applied))) {
       // The loop is not draining its events; its timeout still ends the session.
       spdlog::error("device '{}': release of session {} could not be queued; it will time out instead", record.device,
-                    session::redacted_uuid(record.uuid));
+                    record.session_id);
     }
     response.success = true;
     response.applied_behavior = applied;
     response.message = "released " + std::to_string(record.motor_ids.size()) + " motor(s) of '" + record.device +
                        "' with " + std::string(to_string(applied));
-    spdlog::info("session {} of node '{}' released by '{}': {}", session::redacted_uuid(record.uuid), record.node_name,
-                 request.node_name, response.message);
+    spdlog::info("session {} of node '{}' released by '{}': {}", record.session_id, app::log_text(record.node_name),
+                 app::log_text(request.node_name), response.message);
   }
   on_change_();
   return response;
@@ -153,7 +158,13 @@ std::optional<SessionService::Authorization> SessionService::authorize(std::stri
   const std::lock_guard lock(mutex_);
   const session::SessionRecord* record = table_.find(uuid);
   if (record == nullptr) return std::nullopt;
-  return Authorization{record->device_index, record->slot, record->generation, record->mode, record->motors};
+  return Authorization{record->session_id, record->device_index, record->slot,
+                       record->generation, record->mode,         record->motors};
+}
+
+bool SessionService::is_session_id(std::string_view text) const {
+  const std::lock_guard lock(mutex_);
+  return table_.find_by_id(text) != nullptr;
 }
 
 void SessionService::note_command(std::string_view uuid, std::int64_t now_ns) {
@@ -211,11 +222,11 @@ SessionStatus SessionService::status(std::int64_t now_ns) const {
   status.header.stamp = Time::from_ns(rt::realtime_now_ns());
   const std::lock_guard lock(mutex_);
   for (const auto& record : table_.sessions()) {
-    status.active_uuids.push_back(record.uuid);
+    status.active_uuids.push_back(record.session_id);
     status.node_names.push_back(record.node_name);
     status.motor_counts.push_back(static_cast<std::int32_t>(record.motor_ids.size()));
     SessionInfo info;
-    info.uuid = record.uuid;
+    info.uuid = record.session_id;
     info.node_name = record.node_name;
     info.device = record.device;
     info.motor_ids = record.motor_ids;

@@ -8,6 +8,7 @@
 #include <functional>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -29,6 +30,7 @@ class SessionService {
   GetAvailableMotorsResponse available_motors(const GetAvailableMotorsRequest& request);
 
   struct Authorization {
+    std::string session_id;  // for log lines: never the uuid
     std::size_t device = 0;
     std::uint8_t slot = 0;
     std::uint32_t generation = 0;
@@ -37,6 +39,8 @@ class SessionService {
   };
   /// The session a command's uuid names, if it is active.
   std::optional<Authorization> authorize(std::string_view uuid);
+  /// Whether `text` is a live session's public id (someone used it where a uuid belongs).
+  bool is_session_id(std::string_view text) const;
   /// Records an accepted command: renews the session's timeout clock for time_left.
   void note_command(std::string_view uuid, std::int64_t now_ns);
   /// Whether `uuid` names an active session. Never waits on the session lock, allocates nothing:

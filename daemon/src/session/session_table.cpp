@@ -122,14 +122,14 @@ std::string SessionTable::describe_holders(const DeviceSessions& sessions, const
       if (wanted.test(static_cast<std::size_t>(id))) overlap.push_back(id);
     }
     text += (text.empty() ? "" : "; ") + std::string("motor(s) ") + id_list(overlap) + " held by node '" +
-            slot->node_name + "' (session " + slot->uuid + ", " + std::to_string(slot->time_left_ms(now_ns)) +
+            slot->node_name + "' (session " + slot->session_id + ", " + std::to_string(slot->time_left_ms(now_ns)) +
             " ms left unless it keeps commanding; timeout " + std::to_string(slot->timeout_ms) + " ms)";
   }
   return text;
 }
 
-Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, std::string uuid, std::int64_t now_ns,
-                                          std::int64_t wall_ns) {
+Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, std::string uuid,
+                                          std::string session_id, std::int64_t now_ns, std::int64_t wall_ns) {
   auto device_index = resolve_device(request.device);
   if (!device_index) return device_index.error();
   const control::DeviceModel& model = *devices_[device_index.value()];
@@ -162,6 +162,7 @@ Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, 
 
   SessionRecord record;
   record.uuid = std::move(uuid);
+  record.session_id = std::move(session_id);
   record.node_name = request.node_name.empty() ? "(unnamed)" : request.node_name;
   record.device_index = device_index.value();
   record.device = model.name;
@@ -192,6 +193,12 @@ Result<SessionRecord> SessionTable::release(std::string_view uuid) {
       }
     }
   }
+  if (const SessionRecord* named = find_by_id(uuid)) {
+    return refused("'" + named->session_id + "' is the public id of a session of node '" + named->node_name + "' on '" +
+                   named->device +
+                   "', not a uuid: only the uuid granted to its holder releases it. A session you do not hold ends "
+                   "when its holder releases it or stops commanding it (timeout); the e-stop stops its motors at once");
+  }
   return refused("no active session has uuid '" + std::string(uuid) + "' (it may have timed out or been released)");
 }
 
@@ -208,6 +215,15 @@ SessionRecord* SessionTable::find(std::string_view uuid) {
   for (auto& sessions : sessions_) {
     for (auto& slot : sessions.slots) {
       if (slot && slot->uuid == uuid) return &*slot;
+    }
+  }
+  return nullptr;
+}
+
+const SessionRecord* SessionTable::find_by_id(std::string_view session_id) const {
+  for (const auto& sessions : sessions_) {
+    for (const auto& slot : sessions.slots) {
+      if (slot && slot->session_id == session_id) return &*slot;
     }
   }
   return nullptr;

@@ -25,7 +25,8 @@ struct SessionLimits {
 };
 
 struct SessionRecord {
-  std::string uuid;
+  std::string uuid;        // the capability: known to robotd and the holder only
+  std::string session_id;  // the public name of the session (session_ids.hpp)
   std::string node_name;
   std::size_t device_index = 0;
   std::string device;
@@ -56,15 +57,19 @@ class SessionTable {
   /// The same without the error text: allocates nothing.
   std::optional<std::size_t> find_device(std::string_view name) const;
 
-  /// Grants `request` if it is valid and its motors are free. `uuid` is the new session's id.
-  Result<SessionRecord> grant(const RequestControlRequest& request, std::string uuid, std::int64_t now_ns,
-                              std::int64_t wall_ns);
-  /// Removes the session `uuid` (explicit release).
+  /// Grants `request` if it is valid and its motors are free, as a session with `uuid` and the
+  /// public `session_id` (which no live session may have).
+  Result<SessionRecord> grant(const RequestControlRequest& request, std::string uuid, std::string session_id,
+                              std::int64_t now_ns, std::int64_t wall_ns);
+  /// Removes the session `uuid` (explicit release). Only the uuid releases: a refusal says so
+  /// when `uuid` is a live session's public id.
   Result<SessionRecord> release(std::string_view uuid);
   /// Removes the session in `slot` if it is still `generation` (the loop ended it).
   std::optional<SessionRecord> end(std::size_t device, std::uint8_t slot, std::uint32_t generation);
 
   SessionRecord* find(std::string_view uuid);
+  /// The live session whose public id is `session_id`, if any.
+  const SessionRecord* find_by_id(std::string_view session_id) const;
   bool any_active(std::size_t device) const;
   /// Who holds motors of `device` ("" if nobody), as a refusal names them.
   std::string holders(std::size_t device, std::int64_t now_ns) const;

@@ -109,7 +109,7 @@ struct PolicyData {
 };
 
 struct SessionInfo {
-  std::string uuid;
+  std::string uuid;  // the session's public id, not its uuid (the name is the PI Plus's; see SessionStatus)
   std::string node_name;
   std::string device;
   std::vector<std::int32_t> motor_ids;
@@ -122,15 +122,33 @@ struct SessionInfo {
   std::uint64_t commands_accepted = 0;
 };
 
+/// One service's requests as robotd's DDS surface saw them.
+struct ServiceCounters {
+  std::string service;  // "request_control", ...
+  std::uint64_t requests = 0;
+  std::uint64_t refused = 0;    // replies with success = false, oversized requests included
+  std::uint64_t oversized = 0;  // requests with a field beyond its limit (refused, but an e-stop's words are cut)
+};
+
+/// What robotd's DDS surface saw that no device's CommandCounters can hold.
+struct SurfaceCounters {
+  std::uint64_t commands_unattributed = 0;  // naming no active session and no device robotd has
+  std::uint64_t dds_log_messages = 0;       // warnings and errors of the DDS layer (a malformed sample, ...)
+  std::vector<ServiceCounters> services;
+};
+
 struct SessionStatus {
   Header header;
   std::string state;  // "idle" or "active"
   std::string policy_name;
   std::string policy_file_name;
+  // The PI Plus's parallel arrays. active_uuids holds each session's public id: a session's
+  // uuid is its capability and only its holder knows it (docs/security.md).
   std::vector<std::string> active_uuids;
   std::vector<std::string> node_names;
   std::vector<std::int32_t> motor_counts;
   std::vector<SessionInfo> sessions;
+  SurfaceCounters surface;
 };
 
 struct LoopStatistics {
@@ -216,10 +234,11 @@ struct RequestControlRequest {
 struct RequestControlResponse {
   bool success = false;
   std::string message;
-  std::string uuid;
+  std::string uuid;  // the session's capability: put it in every command, keep it to yourself
   std::vector<std::int32_t> motor_ids;
   Behavior applied_behavior = Behavior::kKeep;
-  std::string device;  // the device granted
+  std::string device;      // the device granted
+  std::string session_id;  // the session's public id, as /session_status and refusals name it
 };
 
 struct ReleaseControlRequest {

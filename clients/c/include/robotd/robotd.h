@@ -57,7 +57,7 @@ extern "C" {
 /* This is a C header: typedef is its only spelling. NOLINTBEGIN(modernize-use-using) */
 
 /* The version of this API: changes when a function or struct of this header changes. */
-#define ROBOTD_C_API_VERSION 1
+#define ROBOTD_C_API_VERSION 2
 
 #define ROBOTD_MAX_JOINTS 64     /* joints per device (the driver API's limit) */
 #define ROBOTD_NAME_CAPACITY 64  /* device, driver, model and joint names, NUL included */
@@ -182,8 +182,11 @@ ROBOTD_API robotd_status robotd_session_request_init(robotd_session_request* req
 ROBOTD_API robotd_status robotd_request_control(robotd_client* client, const robotd_session_request* request,
                                                 robotd_session** session);
 
-/* The session's uuid and granted device; the strings live as long as the session handle. */
+/* The session's uuid, public id and granted device; the strings live as long as the session
+ * handle. The uuid commands and releases the session: keep it to this program. Others (and
+ * /session_status, refusals, robotd's log) know the session by its public id only. */
 ROBOTD_API robotd_status robotd_session_uuid(const robotd_session* session, const char** uuid);
+ROBOTD_API robotd_status robotd_session_id(const robotd_session* session, const char** session_id);
 ROBOTD_API robotd_status robotd_session_device(const robotd_session* session, const char** device);
 /* The granted motor ids, in the order send_positions uses. Same capacity rules as list_devices. */
 ROBOTD_API robotd_status robotd_session_motor_ids(const robotd_session* session, int32_t* motor_ids, size_t capacity,
@@ -195,7 +198,8 @@ ROBOTD_API robotd_status robotd_session_timeout_behavior(const robotd_session* s
 /* Releases the motors now (robotd applies `behavior`). The handle stays valid for its accessors;
  * commands and a second release fail with ROBOTD_INVALID_ARGUMENT. */
 ROBOTD_API robotd_status robotd_release(robotd_session* session, robotd_behavior behavior);
-/* Releases any session by its uuid (like robotctl release), e.g. one whose client died. */
+/* Releases the session with this uuid (like robotctl release), e.g. one an earlier run of this
+ * program was granted and whose uuid it kept. A public id releases nothing. */
 ROBOTD_API robotd_status robotd_release_by_uuid(robotd_client* client, const char* uuid, robotd_behavior behavior);
 /* Releases the session with its request's on_release if still active, then frees the handle.
  * May wait up to the service timeout for robotd; robotd_last_error() says why a release failed

@@ -50,7 +50,12 @@ class Session {
   Session& operator=(const Session&) = delete;
   ~Session();
 
+  /// The session's capability: it commands and releases the session. Keep it to this client;
+  /// robotd shows others only session_id().
   const std::string& uuid() const { return uuid_; }
+  /// The session's public id, as /session_status (SessionInfo.uuid, active_uuids), refusals and
+  /// robotd's log name it.
+  const std::string& session_id() const { return session_id_; }
   /// The device robotd granted (also when the request named none).
   const std::string& device() const { return device_; }
   const std::vector<std::int32_t>& motor_ids() const { return motor_ids_; }
@@ -73,11 +78,11 @@ class Session {
 
  private:
   friend class Client;
-  Session(std::shared_ptr<detail::ClientCore> core, std::string uuid, std::string device, const SessionRequest& request,
-          std::vector<std::int32_t> motor_ids, Behavior applied_behavior);
+  Session(std::shared_ptr<detail::ClientCore> core, RequestControlResponse granted, const SessionRequest& request);
 
   std::shared_ptr<detail::ClientCore> core_;
   std::string uuid_;
+  std::string session_id_;
   std::string device_;
   std::vector<std::int32_t> motor_ids_;
   ControlMode mode_ = ControlMode::kPosition;

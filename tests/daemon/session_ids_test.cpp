@@ -1,6 +1,6 @@
-// A session uuid is the session's capability: an RFC 4122 version 4 uuid (122 random bits),
-// and logs show only its redacted prefix.
-#include "session/session_uuid.hpp"
+// A session uuid is the session's capability: an RFC 4122 version 4 uuid (122 random bits).
+// Its public id is drawn on its own; logs show an unknown uuid only redacted.
+#include "session/session_ids.hpp"
 
 #include <regex>
 #include <set>
@@ -40,6 +40,27 @@ TEST(SessionUuid, EveryHexDigitPositionVaries) {
     const bool is_dash = c == 8 || c == 13 || c == 18 || c == 23;
     const bool is_version = c == 14;
     EXPECT_EQ(varied[c], !is_dash && !is_version) << "position " << c;
+  }
+}
+
+TEST(SessionId, IsEightLowercaseHexDigitsWithEveryPositionVarying) {
+  static const std::regex hex8("[0-9a-f]{8}");
+  const std::string first = random_session_id();
+  std::vector<bool> varied(8, false);
+  for (int i = 0; i < 200; ++i) {
+    const std::string next = random_session_id();
+    ASSERT_TRUE(std::regex_match(next, hex8)) << next;
+    for (std::size_t c = 0; c < 8; ++c) varied[c] = varied[c] || next[c] != first[c];
+  }
+  for (std::size_t c = 0; c < 8; ++c) EXPECT_TRUE(varied[c]) << "position " << c;
+}
+
+TEST(SessionId, IsDrawnApartFromTheUuid) {
+  // Drawn one after the other, an id that were a slice of the uuid would show up here.
+  for (int i = 0; i < 100; ++i) {
+    const std::string uuid = random_session_uuid();
+    const std::string id = random_session_id();
+    EXPECT_EQ(uuid.find(id), std::string::npos) << id << " in " << uuid;
   }
 }
 
