@@ -1,12 +1,18 @@
-// The loop's safety invariants (docs/safety.md) on random scenarios and on every regression
-// scenario kept in tests/safety/regressions. A failure prints the seed, the broken invariant
-// and a shrunk scenario that reproduces it, and writes that scenario to
-// <build>/tests/safety-failures/ so it can be replayed (ROBOTD_SAFETY_REPLAY=<file>) and kept.
+// The safety invariants (docs/safety.md) on random scenarios, in two layers: the ControlLoop
+// with the service side played by the rig (loop_rig), and the same scenarios through robotd's
+// real services (service_rig). Every regression scenario in tests/safety/regressions runs
+// through both. A failure prints the seed, the broken invariant and a shrunk scenario that
+// reproduces it, and writes that scenario to <build>/tests/safety-failures/ so it can be
+// replayed and kept.
 //
-//   ROBOTD_SAFETY_SEED      first seed (default: drawn at random, printed)
-//   ROBOTD_SAFETY_TICKS     total ticks over all scenarios (default 1 000 000)
-//   ROBOTD_SAFETY_REPLAY    run just this scenario file (ROBOTD_SAFETY_TRACE=1: print every tick)
-//   ROBOTD_SAFETY_SURVEY=1  do not stop at the first failure: one line per failing seed
+//   ROBOTD_SAFETY_SEED            first seed (default: drawn at random, printed)
+//   ROBOTD_SAFETY_TICKS           ticks over all scenarios, loop layer (default 1 000 000)
+//   ROBOTD_SAFETY_SERVICE_TICKS   ticks over all scenarios, service layer (default 200 000)
+//   ROBOTD_SAFETY_REPLAY          run just this scenario file (ROBOTD_SAFETY_TRACE=1: print every
+//                                 tick; ROBOTD_SAFETY_LAYER=services: through the services)
+//   ROBOTD_SAFETY_SURVEY=1        do not stop at the first failure: one line per failing seed
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -15,9 +21,11 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <spdlog/spdlog.h>
 
 #include "loop_rig.hpp"
 #include "scenario_generator.hpp"
+#include "service_rig.hpp"
 #include "shrink.hpp"
 
 namespace robotd::safety {
@@ -45,17 +53,81 @@ std::string report(const Scenario& scenario, const RunResult& result) {
   return out.str();
 }
 
+struct Layer {
+  const char* name;
+  Runner run;
+};
+constexpr Layer kLoop{"loop", &run_scenario};
+constexpr Layer kServices{"services", &run_scenario_through_services};
+
 // Shrinks a failure, saves it and returns the text to print.
-std::string shrink_and_save(const Scenario& scenario, const RunResult& result, std::uint64_t seed) {
-  const ShrinkResult shrunk = shrink(scenario, result);
+std::string shrink_and_save(const Layer& layer, const Scenario& scenario, const RunResult& result, std::uint64_t seed) {
+  const ShrinkResult shrunk = shrink(scenario, result, layer.run);
   const std::filesystem::path directory = std::filesystem::path(ROBOTD_BINARY_DIR) / "tests" / "safety-failures";
   std::filesystem::create_directories(directory);
-  const std::filesystem::path file = directory / ("seed-" + std::to_string(seed) + ".scenario");
-  std::ofstream(file) << "# seed " << seed << ": " << shrunk.result.violation->invariant << "\n# "
-                      << shrunk.result.violation->detail << "\n"
+  const std::filesystem::path file =
+      directory / (std::string(layer.name) + "-seed-" + std::to_string(seed) + ".scenario");
+  std::ofstream(file) << "# " << layer.name << " layer, seed " << seed << ": " << shrunk.result.violation->invariant
+                      << "\n# " << shrunk.result.violation->detail << "\n"
                       << to_text(shrunk.scenario);
-  return "seed " + std::to_string(seed) + " (shrunk in " + std::to_string(shrunk.replays) + " replays, saved as " +
-         file.string() + "):\n" + report(shrunk.scenario, shrunk.result);
+  return std::string(layer.name) + " layer, seed " + std::to_string(seed) + " (shrunk in " +
+         std::to_string(shrunk.replays) + " replays, saved as " + file.string() + "):\n" +
+         report(shrunk.scenario, shrunk.result);
+}
+
+void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
+  const std::uint64_t first_seed = env_number("ROBOTD_SAFETY_SEED", std::random_device{}());
+  std::printf("%s layer: first seed %llu (ROBOTD_SAFETY_SEED=%llu reproduces this run), %llu ticks\n", layer.name,
+              static_cast<unsigned long long>(first_seed), static_cast<unsigned long long>(first_seed),
+              static_cast<unsigned long long>(total_ticks));
+  const bool survey = env_number("ROBOTD_SAFETY_SURVEY", 0) != 0;
+  const auto began = std::chrono::steady_clock::now();
+  RunResult sum;
+  std::uint64_t scenarios = 0;
+  std::uint64_t failures = 0;
+  for (std::uint64_t seed = first_seed; sum.ticks < total_ticks; ++seed) {
+    const Scenario scenario = generate_scenario(seed, kTicksPerScenario);
+    const RunResult result = layer.run(scenario, nullptr);
+    ++scenarios;
+    sum.ticks += result.ticks;
+    sum.commands_accepted += result.commands_accepted;
+    sum.commands_rejected += result.commands_rejected;
+    sum.commands_unknown_session += result.commands_unknown_session;
+    sum.sessions_granted += result.sessions_granted;
+    for (std::size_t i = 0; i < sum.ticks_in_state.size(); ++i) sum.ticks_in_state[i] += result.ticks_in_state[i];
+    if (result.violation && survey) {
+      ++failures;
+      std::printf("seed %llu: %s at tick %llu: %s\n", static_cast<unsigned long long>(seed),
+                  result.violation->invariant.c_str(), static_cast<unsigned long long>(result.violation->tick),
+                  result.violation->detail.substr(0, 160).c_str());
+    } else if (result.violation) {
+      FAIL() << shrink_and_save(layer, scenario, result, seed);
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  std::printf(
+      "%llu scenarios, %llu ticks in %.1f s: %llu sessions granted, %llu commands accepted, %llu rejected (%llu "
+      "without a live session)\nticks by state:",
+      static_cast<unsigned long long>(scenarios), static_cast<unsigned long long>(sum.ticks), seconds,
+      static_cast<unsigned long long>(sum.sessions_granted), static_cast<unsigned long long>(sum.commands_accepted),
+      static_cast<unsigned long long>(sum.commands_rejected),
+      static_cast<unsigned long long>(sum.commands_unknown_session));
+  for (std::size_t i = 0; i < sum.ticks_in_state.size(); ++i) {
+    if (sum.ticks_in_state[i] == 0) continue;
+    std::printf(" %s %.1f%%", std::string(to_string(static_cast<DeviceState>(i))).c_str(),
+                100.0 * static_cast<double>(sum.ticks_in_state[i]) / static_cast<double>(sum.ticks));
+  }
+  std::printf("\n");
+  EXPECT_EQ(failures, 0U);
+  // The generator must exercise what it claims to: sessions, and commands both good and bad,
+  // and every state.
+  EXPECT_GT(sum.sessions_granted, scenarios);
+  EXPECT_GT(sum.commands_accepted, sum.ticks / 10);
+  EXPECT_GT(sum.commands_rejected, sum.ticks / 100);
+  for (const DeviceState state : {DeviceState::kRunning, DeviceState::kFault, DeviceState::kEstop,
+                                  DeviceState::kMaintenance}) {
+    EXPECT_GT(sum.ticks_in_state[static_cast<std::size_t>(state)], sum.ticks / 100) << to_string(state);
+  }
 }
 
 TEST(SafetyInvariants, HoldOnEveryTickOfRandomScenarios) {
@@ -63,76 +135,19 @@ TEST(SafetyInvariants, HoldOnEveryTickOfRandomScenarios) {
     std::string error;
     const auto scenario = parse_scenario(read_file(replay), error);
     ASSERT_TRUE(scenario) << replay << ": " << error;
-    const bool trace = env_number("ROBOTD_SAFETY_TRACE", 0) != 0;
-    const RunResult result = run_scenario(*scenario, trace ? stdout : nullptr);
+    const char* layer = std::getenv("ROBOTD_SAFETY_LAYER");  // NOLINT(concurrency-mt-unsafe)
+    const Runner run = layer != nullptr && std::string(layer) == "services" ? kServices.run : kLoop.run;
+    const RunResult result = run(*scenario, env_number("ROBOTD_SAFETY_TRACE", 0) != 0 ? stdout : nullptr);
     EXPECT_FALSE(result.violation) << report(*scenario, result);
     return;
   }
-  const std::uint64_t first_seed = env_number("ROBOTD_SAFETY_SEED", std::random_device{}());
-  const std::uint64_t total_ticks = env_number("ROBOTD_SAFETY_TICKS", 1'000'000);
-  std::printf("safety scenarios: first seed %llu (ROBOTD_SAFETY_SEED=%llu reproduces this run), %llu ticks\n",
-              static_cast<unsigned long long>(first_seed), static_cast<unsigned long long>(first_seed),
-              static_cast<unsigned long long>(total_ticks));
-  const auto began = std::chrono::steady_clock::now();
-  std::uint64_t ticks = 0;
-  std::uint64_t accepted = 0;
-  std::uint64_t rejected = 0;
-  std::uint64_t unknown = 0;
-  std::uint64_t granted = 0;
-  std::uint64_t scenarios = 0;
-  std::array<std::uint64_t, 7> in_state{};
-  std::uint64_t failures = 0;
-  const bool survey = env_number("ROBOTD_SAFETY_SURVEY", 0) != 0;
-  for (std::uint64_t seed = first_seed; ticks < total_ticks; ++seed) {
-    const Scenario scenario = generate_scenario(seed, kTicksPerScenario);
-    const RunResult result = run_scenario(scenario);
-    ++scenarios;
-    ticks += result.ticks;
-    accepted += result.commands_accepted;
-    rejected += result.commands_rejected;
-    unknown += result.commands_unknown_session;
-    granted += result.sessions_granted;
-    for (std::size_t i = 0; i < in_state.size(); ++i) in_state[i] += result.ticks_in_state[i];
-    if (result.violation && survey) {
-      ++failures;
-      std::printf("seed %llu: %s at tick %llu: %s\n", static_cast<unsigned long long>(seed),
-                  result.violation->invariant.c_str(), static_cast<unsigned long long>(result.violation->tick),
-                  result.violation->detail.substr(0, 160).c_str());
-    } else if (result.violation) {
-      FAIL() << shrink_and_save(scenario, result, seed);
-    }
-  }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  std::printf(
-      "%llu scenarios, %llu ticks in %.1f s: %llu sessions granted, %llu commands accepted, %llu rejected (%llu "
-      "without a live session)\n",
-      static_cast<unsigned long long>(scenarios), static_cast<unsigned long long>(ticks), seconds,
-      static_cast<unsigned long long>(granted), static_cast<unsigned long long>(accepted),
-      static_cast<unsigned long long>(rejected), static_cast<unsigned long long>(unknown));
-  std::printf("ticks by state:");
-  for (std::size_t i = 0; i < in_state.size(); ++i) {
-    if (in_state[i] != 0) {
-      std::printf(" %s %.1f%%", std::string(to_string(static_cast<DeviceState>(i))).c_str(),
-                  100.0 * static_cast<double>(in_state[i]) / static_cast<double>(ticks));
-    }
-  }
-  std::printf("\n");
-  EXPECT_EQ(failures, 0U);
-  // The generator must exercise what it claims to: sessions, and commands both good and bad.
-  EXPECT_GT(granted, scenarios);
-  EXPECT_GT(accepted, ticks / 4);
-  EXPECT_GT(rejected, ticks / 100);
+  run_random_scenarios(kLoop, env_number("ROBOTD_SAFETY_TICKS", 1'000'000));
 }
 
-class RegressionScenario : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(RegressionScenario, StillHolds) {
-  const std::filesystem::path path = std::filesystem::path(ROBOTD_SAFETY_REGRESSIONS) / GetParam();
-  std::string error;
-  const auto scenario = parse_scenario(read_file(path), error);
-  ASSERT_TRUE(scenario) << path << ": " << error;
-  const RunResult result = run_scenario(*scenario);
-  EXPECT_FALSE(result.violation) << path << "\n" << report(*scenario, result);
+TEST(SafetyInvariants, HoldThroughTheServicesOnRandomScenarios) {
+  if (std::getenv("ROBOTD_SAFETY_REPLAY") != nullptr) GTEST_SKIP() << "replaying one scenario";  // NOLINT
+  spdlog::set_level(spdlog::level::err);  // the services log every grant, refusal and recover
+  run_random_scenarios(kServices, env_number("ROBOTD_SAFETY_SERVICE_TICKS", 200'000));
 }
 
 std::vector<std::string> regression_files() {
@@ -143,6 +158,22 @@ std::vector<std::string> regression_files() {
   std::sort(files.begin(), files.end());
   return files;
 }
+
+class RegressionScenario : public ::testing::TestWithParam<std::string> {
+ protected:
+  void replay(const Layer& layer) const {
+    spdlog::set_level(spdlog::level::err);
+    const std::filesystem::path path = std::filesystem::path(ROBOTD_SAFETY_REGRESSIONS) / GetParam();
+    std::string error;
+    const auto scenario = parse_scenario(read_file(path), error);
+    ASSERT_TRUE(scenario) << path << ": " << error;
+    const RunResult result = layer.run(*scenario, nullptr);
+    EXPECT_FALSE(result.violation) << layer.name << " layer, " << path << "\n" << report(*scenario, result);
+  }
+};
+
+TEST_P(RegressionScenario, HoldsInTheLoop) { replay(kLoop); }
+TEST_P(RegressionScenario, HoldsThroughTheServices) { replay(kServices); }
 
 std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
   std::string name = std::filesystem::path(info.param).stem().string();

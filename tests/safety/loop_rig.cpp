@@ -40,7 +40,7 @@ class MaintenanceThread {
           phase_ = Phase::kIdle;
         } else if (channel_.maintenance_active.load()) {
           phase_ = Phase::kWorking;
-          plant_.abort_requested = false;  // recover() and reset_zero() clear the request when they start
+          plant_.abort_requested.store(false);  // recover() and reset_zero() clear the request when they start
         }
         return;
       case Phase::kWorking:

@@ -37,4 +37,7 @@ struct RunResult {
 /// each joint's reading and command (for a person reading a shrunk failure).
 RunResult run_scenario(const Scenario& scenario, std::FILE* trace = nullptr);
 
+/// A way to run a scenario: run_scenario, or run_scenario_through_services (service_rig).
+using Runner = RunResult (*)(const Scenario& scenario, std::FILE* trace);
+
 }  // namespace robotd::safety

@@ -14,17 +14,54 @@ constexpr double kServoFollowing = 0.3;    // a position servo closes this share
 
 }  // namespace
 
-PlantDriver::PlantDriver(const DeviceSpec& spec) : joint_count_(spec.joints) {}
+PlantDriver::PlantDriver(const DeviceSpec& spec) : spec_(spec), joint_count_(spec.joints) {}
+
+driver::DeviceDescription PlantDriver::describe() const {
+  const control::DeviceModel model = spec_.model();
+  driver::DeviceDescription description;
+  description.model = "plant";
+  description.supports_torque = spec_.torque;
+  description.supports_damping = spec_.damping;
+  description.supports_zero_torque = spec_.zero_torque;
+  for (std::size_t j = 0; j < joint_count_; ++j) {
+    description.joints.push_back(driver::JointDescription{model.joint_names[j], model.limits[j], model.default_kp[j],
+                                                          model.default_kd[j], 0.0});
+  }
+  return description;
+}
+
+void PlantDriver::next_maintenance(int ticks, bool fail) noexcept {
+  const std::lock_guard lock(mutex_);
+  maintenance_ticks_ = ticks;
+  maintenance_fails_ = fail;
+}
+
+bool PlantDriver::wait_for_maintenance() {
+  abort_requested.store(false);  // recover() and reset_zero() clear the request when they start
+  std::unique_lock lock(mutex_);
+  until_ = ticks_ + static_cast<std::uint64_t>(std::max(maintenance_ticks_, 0));
+  in_work_.store(true);
+  ticked_.wait(lock, [&] { return ticks_ >= until_ || abort_requested.load(); });
+  in_work_.store(false);
+  return !abort_requested.load() && !maintenance_fails_;
+}
+
+bool PlantDriver::maintenance_released() {
+  const std::lock_guard lock(mutex_);
+  return in_work_.load() && (ticks_ >= until_ || abort_requested.load());
+}
 
 Result<void> PlantDriver::recover() {
+  if (!wait_for_maintenance()) return make_error(ErrorCode::kRefused, "aborted or failed");
   if (!link_up) return make_error(ErrorCode::kNotAvailable, "link down");
   fault_code = 0;
   return {};
 }
 
 Result<void> PlantDriver::reset_zero(std::span<const int> joints) {
+  if (!wait_for_maintenance()) return make_error(ErrorCode::kRefused, "aborted or failed");
   for (const int joint : joints) {
-    joints_[static_cast<std::size_t>(joint)] = Joint{};
+    if (joint >= 0 && static_cast<std::size_t>(joint) < joint_count_) joints_[static_cast<std::size_t>(joint)] = Joint{};
   }
   return {};
 }
@@ -84,6 +121,11 @@ driver::IoResult PlantDriver::write(const driver::CommandFrame& command, driver:
 }
 
 void PlantDriver::advance(double dt_s) noexcept {
+  {
+    const std::lock_guard lock(mutex_);
+    ++ticks_;
+  }
+  ticked_.notify_all();
   for (std::size_t j = 0; j < joint_count_; ++j) {
     Joint& joint = joints_[j];
     const driver::JointCommand* command = have_written_ && link_up ? &last_written_.joints[j] : nullptr;

@@ -5,6 +5,9 @@
 #pragma once
 
 #include <array>
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <span>
 
 #include "robotd/driver/driver.hpp"
@@ -17,12 +20,22 @@ class PlantDriver final : public driver::Driver {
   explicit PlantDriver(const DeviceSpec& spec);
 
   Result<void> configure(const nlohmann::json& /*params*/) override { return {}; }
-  driver::DeviceDescription describe() const override { return {}; }
+  driver::DeviceDescription describe() const override;
   Result<void> connect() override { return {}; }
   void disconnect() noexcept override {}
+  /// Recovering and zeroing take the ticks set by next_maintenance() (0: at once), counted by
+  /// advance(), unless abort_maintenance() ends them first; meanwhile they block the calling
+  /// (maintenance) thread.
   Result<void> recover() override;
   Result<void> reset_zero(std::span<const int> joints) override;
-  void abort_maintenance() noexcept override { abort_requested = true; }
+  void abort_maintenance() noexcept override { abort_requested.store(true); }
+
+  /// How long the next recover() or reset_zero() takes, and whether it fails.
+  void next_maintenance(int ticks, bool fail) noexcept;
+  /// Whether a recover() or reset_zero() is waiting out its ticks now.
+  bool in_maintenance_work() const noexcept { return in_work_.load(); }
+  /// Whether that wait is over (its ticks have passed, or it was aborted): it returns now.
+  bool maintenance_released();
 
   driver::IoResult read(driver::Feedback& out, driver::FaultInfo& fault) noexcept override;
   driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override;
@@ -50,20 +63,30 @@ class PlantDriver final : public driver::Driver {
   driver::IoResult read_result = driver::IoResult::kNoNewData;
   bool read_ok = false;
   driver::Feedback read_feedback{};
-  bool abort_requested = false;
+  std::atomic<bool> abort_requested{false};
 
   /// Clears the per-tick records before a tick.
   void begin_tick() noexcept;
 
  private:
   driver::IoResult read_unrecorded(driver::Feedback& out, driver::FaultInfo& fault) noexcept;
+  /// Waits out the maintenance ticks; false if aborted.
+  bool wait_for_maintenance();
 
   struct Joint {
     double position = 0;
     double velocity = 0;
     double effort = 0;
   };
+  DeviceSpec spec_;
   std::size_t joint_count_;
+  std::mutex mutex_;  // the ticks counted, for a maintenance thread waiting them out
+  std::condition_variable ticked_;
+  std::uint64_t ticks_ = 0;
+  std::uint64_t until_ = 0;  // the tick a waiting maintenance ends at
+  int maintenance_ticks_ = 0;
+  bool maintenance_fails_ = false;
+  std::atomic<bool> in_work_{false};
   std::array<Joint, driver::kMaxJoints> joints_{};
   driver::CommandFrame last_written_{};
   bool have_written_ = false;

@@ -209,7 +209,7 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
       recover.kind = Event::Kind::kRecover;
       recover.count = dice.chance(0.05) ? dice.between(500, 2000) : dice.between(1, 100);
       recover.fail = dice.chance(0.2);
-      faulty = faulty && (recover.fail || !link_up || silent || glitch.has_value());
+      faulty = faulty && (recover.fail || !link_up || silent || glitch.has_value() || dice.chance(0.5));
       push(recover);
     }
     if (dice.chance(0.0002)) {

@@ -19,12 +19,12 @@ std::string signature(const Violation& violation) {
 
 class Shrinker {
  public:
-  Shrinker(const Scenario& failing, const RunResult& failure, std::size_t max_replays)
-      : best_(failing), best_result_(failure), kind_(signature(*failure.violation)), budget_(max_replays) {
+  Shrinker(const Scenario& failing, const RunResult& failure, Runner runner, std::size_t max_replays)
+      : run_(runner), best_(failing), best_result_(failure), kind_(signature(*failure.violation)), budget_(max_replays) {
     best_.events.resize(std::min(best_.events.size(), failure.events_run));
   }
 
-  ShrinkResult run() {
+  ShrinkResult shrink() {
     remove_chunks();
     merge_tick_runs();
     shorten_tick_runs();
@@ -38,7 +38,7 @@ class Shrinker {
     if (replays_ >= budget_) return false;
     ++replays_;
     Scenario candidate{best_.device, std::move(events)};
-    RunResult result = run_scenario(candidate);
+    RunResult result = run_(candidate, nullptr);
     if (!result.violation || signature(*result.violation) != kind_) return false;
     candidate.events.resize(std::min(candidate.events.size(), result.events_run));
     best_ = std::move(candidate);
@@ -102,6 +102,7 @@ class Shrinker {
     }
   }
 
+  Runner run_;
   Scenario best_;
   RunResult best_result_;
   std::string kind_;
@@ -111,8 +112,8 @@ class Shrinker {
 
 }  // namespace
 
-ShrinkResult shrink(const Scenario& failing, const RunResult& failure, std::size_t max_replays) {
-  return Shrinker(failing, failure, max_replays).run();
+ShrinkResult shrink(const Scenario& failing, const RunResult& failure, Runner run, std::size_t max_replays) {
+  return Shrinker(failing, failure, run, max_replays).shrink();
 }
 
 }  // namespace robotd::safety

@@ -17,6 +17,7 @@ struct ShrinkResult {
   std::size_t replays = 0;
 };
 
-ShrinkResult shrink(const Scenario& failing, const RunResult& failure, std::size_t max_replays = 20000);
+/// Shrinks `failing`, which `run` found to fail with `failure`.
+ShrinkResult shrink(const Scenario& failing, const RunResult& failure, Runner run, std::size_t max_replays = 20000);
 
 }  // namespace robotd::safety

@@ -104,7 +104,7 @@ Result<void> Device::configure() {
   return {};
 }
 
-Result<void> Device::start() {
+Result<void> Device::start(LoopRunner runner) {
   if (auto connected = plugin_->driver().connect(); !connected) {
     // A device that is just not there yet (powered later, a simulator started after robotd)
     // starts as a lost link and is connected by the reconnector once it answers.
@@ -129,6 +129,8 @@ Result<void> Device::start() {
   const rt::ThreadSettings thread_settings{"rt-" + config_.name, config_.realtime, config_.rt_priority, config_.cpu};
   // The loop is built on this thread (it may allocate); the RT thread only runs it.
   loop_ = std::make_unique<ControlLoop>(plugin_->driver(), model_, *channel_, settings);
+  runner_ = runner;
+  if (runner == LoopRunner::kCaller) return {};
   ControlLoop* loop = loop_.get();
   auto started = rt::start_thread(thread_, thread_settings, [loop] { loop->run(); });
   if (!started) {
@@ -161,7 +163,7 @@ Result<void> Device::run_maintenance(const std::function<Result<void>(driver::Dr
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!channel_->maintenance_active.load(std::memory_order_acquire)) {
     const bool declined = channel_->maintenance_declined.exchange(false, std::memory_order_acq_rel);
-    if (declined || std::chrono::steady_clock::now() > deadline || !thread_.joinable()) {
+    if (declined || std::chrono::steady_clock::now() > deadline || !running()) {
       channel_->maintenance_requested.store(false, std::memory_order_release);
       if (declined) return make_error(ErrorCode::kRefused, preempted_by());
       return make_error(ErrorCode::kTimeout, "device '" + config_.name + "': the loop did not pause for maintenance");
@@ -175,7 +177,7 @@ Result<void> Device::run_maintenance(const std::function<Result<void>(driver::Dr
   if (!result && preempted) result = make_error(ErrorCode::kRefused, "aborted: " + preempted_by());
   channel_->maintenance_clears_fault.store(result.ok() && clears_fault, std::memory_order_release);
   channel_->maintenance_requested.store(false, std::memory_order_release);
-  while (channel_->maintenance_active.load(std::memory_order_acquire) && thread_.joinable()) {
+  while (channel_->maintenance_active.load(std::memory_order_acquire) && running()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return result;

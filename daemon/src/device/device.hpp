@@ -28,8 +28,13 @@ class Device {
   /// Configures the driver with the device's params and builds the model (limits narrowed by
   /// the config's joint_limits; widening a driver limit is refused).
   Result<void> configure();
+  /// How the loop runs: on its own RT thread at rate_hz (robotd), or a tick at a time when the
+  /// caller says (deterministic tests of the services around a loop, at simulated times).
+  enum class LoopRunner { kThread, kCaller };
   /// Connects the driver and starts the RT loop.
-  Result<void> start();
+  Result<void> start(LoopRunner runner = LoopRunner::kThread);
+  /// LoopRunner::kCaller only: one tick due at `deadline_ns`, run at `now_ns`.
+  void tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept { loop_->tick(deadline_ns, now_ns); }
   /// Tells the loop to begin its safe stop (returns at once).
   void request_stop();
   /// Brings the device to its safe stop, ends the loop and disconnects the driver.
@@ -48,7 +53,9 @@ class Device {
   const DeviceChannel& channel() const { return *channel_; }
   driver::Driver& driver() { return plugin_->driver(); }
   const rt::ThreadStart& thread_start() const { return thread_start_; }
-  bool running() const { return thread_.joinable(); }
+  bool running() const {
+    return thread_.joinable() || (runner_ == LoopRunner::kCaller && loop_ != nullptr && !loop_->finished());
+  }
 
   /// Who engaged the e-stop and why, for DeviceStatus.state_text.
   void set_estop_note(std::string note);
@@ -63,6 +70,7 @@ class Device {
   std::unique_ptr<DeviceChannel> channel_;
   std::unique_ptr<ControlLoop> loop_;
   std::thread thread_;
+  LoopRunner runner_ = LoopRunner::kThread;
   rt::ThreadStart thread_start_;
   std::mutex maintenance_mutex_;
   mutable std::mutex note_mutex_;

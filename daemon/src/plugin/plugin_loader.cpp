@@ -28,7 +28,18 @@ LoadedDriver::LoadedDriver(void* library, const driver::PluginInfo* info, driver
 
 LoadedDriver::~LoadedDriver() {
   info_->destroy(instance_);
-  dlclose(library_);
+  if (library_ != nullptr) dlclose(library_);
+}
+
+std::unique_ptr<LoadedDriver> LoadedDriver::built_in(std::unique_ptr<driver::Driver> driver, std::string name) {
+  static const driver::PluginInfo kBuiltIn{driver::kAbiVersion,
+                                           static_cast<std::uint32_t>(sizeof(driver::CommandFrame)),
+                                           static_cast<std::uint32_t>(sizeof(driver::Feedback)),
+                                           "built-in",
+                                           "built-in",
+                                           nullptr,
+                                           [](driver::Driver* instance) noexcept { delete instance; }};
+  return std::make_unique<LoadedDriver>(nullptr, &kBuiltIn, driver.release(), std::move(name));
 }
 
 std::vector<std::string> plugin_search_path(const std::vector<std::string>& config_dirs) {

@@ -17,6 +17,9 @@ namespace robotd::plugin {
 class LoadedDriver {
  public:
   LoadedDriver(void* library, const driver::PluginInfo* info, driver::Driver* instance, std::string path);
+  /// A driver compiled into the program instead of loaded from a plugin (tests that step a
+  /// device's loop themselves); `name` stands where a plugin's path would.
+  static std::unique_ptr<LoadedDriver> built_in(std::unique_ptr<driver::Driver> driver, std::string name);
   LoadedDriver(const LoadedDriver&) = delete;
   LoadedDriver& operator=(const LoadedDriver&) = delete;
   ~LoadedDriver();

@@ -169,6 +169,7 @@ bool DeviceServices::wait_for_state(std::size_t device, std::uint64_t after_tick
   while (std::chrono::steady_clock::now() < deadline) {
     out = observers_[device]->latest();
     if (out.tick > after_tick && out.state == DeviceState::kRunning) return true;
+    if (out.state == DeviceState::kStopped) return false;  // robotd is shutting down: it never will
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   return false;
@@ -187,7 +188,8 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   if (auto reserved = sessions_.reserve_for_maintenance(index.value(), "reset_zero"); !reserved) {
     return ResetZeroResponse{false, reserved.error().message};
   }
-  const MaintenanceReservation reservation(sessions_, index.value());
+  std::optional<MaintenanceReservation> reservation;
+  reservation.emplace(sessions_, index.value());
   const DeviceState state = device.channel().device_state.load(std::memory_order_acquire);
   if (state != DeviceState::kRunning) {
     return ResetZeroResponse{
@@ -209,6 +211,7 @@ ResetZeroResponse DeviceServices::reset_zero(const ResetZeroRequest& request) {
   spdlog::info("device '{}': reset_zero of {} motor(s)", model.name, joints.size());
   auto zeroed =
       device.run_maintenance([&](driver::Driver& driver) { return driver.reset_zero(joints); }, false, timeout);
+  reservation.reset();  // the loop has the driver again: sessions may be granted
   if (!zeroed) return ResetZeroResponse{false, "reset_zero on '" + model.name + "' failed: " + zeroed.error().message};
 
   device::LoopState after;
@@ -279,6 +282,7 @@ DeviceCallResponse DeviceServices::daemon_op(std::size_t index, const std::strin
     spdlog::info("device '{}': recover requested", name);
     auto recovered =
         device.run_maintenance([](driver::Driver& driver) { return driver.recover(); }, true, std::chrono::seconds(10));
+    reservation.reset();  // the loop has the driver again: sessions may be granted
     if (!recovered) return call_failed("recover of '" + name + "' failed: " + recovered.error().message);
     device::LoopState state;
     if (!wait_for_state(index, observers_[index]->latest().tick, std::chrono::seconds(2), state)) {

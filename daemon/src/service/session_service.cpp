@@ -38,9 +38,10 @@ std::string state_refusal(DeviceState state, const std::string& device) {
 }  // namespace
 
 SessionService::SessionService(std::vector<device::Device*> devices, session::SessionLimits limits,
-                               std::function<void()> on_change)
+                               std::function<void()> on_change, Clock monotonic_now_ns)
     : devices_(std::move(devices)),
       table_(models_of(devices_), limits),
+      monotonic_now_ns_(monotonic_now_ns),
       maintenance_(devices_.size()),
       on_change_(std::move(on_change)) {}
 
@@ -68,7 +69,7 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
     }
     std::string session_id = session::random_session_id();
     while (table_.find_by_id(session_id) != nullptr) session_id = session::random_session_id();
-    auto granted = table_.grant(request, session::random_session_uuid(), std::move(session_id), rt::monotonic_now_ns(),
+    auto granted = table_.grant(request, session::random_session_uuid(), std::move(session_id), monotonic_now_ns_(),
                                 rt::realtime_now_ns());
     if (!granted) {
       response.message = granted.error().message;
@@ -194,7 +195,7 @@ Result<void> SessionService::reserve_for_maintenance(std::size_t device, const s
     return make_error(ErrorCode::kRefused,
                       "device '" + name + "' is already in maintenance (" + maintenance_[device] + "); retry when it is done");
   }
-  if (const std::string holders = table_.holders(device, rt::monotonic_now_ns()); !holders.empty()) {
+  if (const std::string holders = table_.holders(device, monotonic_now_ns_()); !holders.empty()) {
     return make_error(ErrorCode::kRefused, operation + " is refused while a session is active on '" + name + "': " +
                                                holders + "; release it first");
   }
@@ -205,6 +206,11 @@ Result<void> SessionService::reserve_for_maintenance(std::size_t device, const s
 void SessionService::end_maintenance(std::size_t device) {
   const std::lock_guard lock(mutex_);
   maintenance_[device].clear();
+}
+
+std::string SessionService::maintenance_operation(std::size_t device) const {
+  const std::lock_guard lock(mutex_);
+  return maintenance_[device];
 }
 
 bool SessionService::any_active(std::size_t device) const {

@@ -15,6 +15,7 @@
 #include "control/command_validator.hpp"
 #include "device/device.hpp"
 #include "robotd/messages.hpp"
+#include "rt/monotonic_clock.hpp"
 #include "session/active_uuids.hpp"
 #include "session/session_table.hpp"
 
@@ -23,7 +24,11 @@ namespace robotd::service {
 class SessionService {
  public:
   /// `on_change` is called (outside any lock) whenever the set of sessions changes.
-  SessionService(std::vector<device::Device*> devices, session::SessionLimits limits, std::function<void()> on_change);
+  /// The clock stamps grants (CLOCK_MONOTONIC, the loops' clock); a test that ticks a loop at
+  /// simulated times passes its own.
+  using Clock = std::int64_t (*)() noexcept;
+  SessionService(std::vector<device::Device*> devices, session::SessionLimits limits, std::function<void()> on_change,
+                 Clock monotonic_now_ns = &rt::monotonic_now_ns);
 
   RequestControlResponse request_control(const RequestControlRequest& request);
   ReleaseControlResponse release_control(const ReleaseControlRequest& request);
@@ -57,6 +62,8 @@ class SessionService {
   /// holds any of its motors (the error names the holders) or another operation has it.
   Result<void> reserve_for_maintenance(std::size_t device, const std::string& operation);
   void end_maintenance(std::size_t device);
+  /// The operation that holds `device` for maintenance, "" if none.
+  std::string maintenance_operation(std::size_t device) const;
   Result<std::size_t> resolve_device(std::string_view name) const;
   /// The device `name` names ("": the only one), if any. The devices never change: no lock, no
   /// allocation.
@@ -68,6 +75,7 @@ class SessionService {
   mutable std::mutex mutex_;
   session::SessionTable table_;
   session::ActiveUuids active_;  // the uuids in table_, for is_active()
+  Clock monotonic_now_ns_;
   std::vector<std::string> maintenance_;  // per device: the operation that holds it, "" = none
   std::function<void()> on_change_;
 };
