@@ -15,6 +15,10 @@ class Dice {
   int between(int low, int high) { return std::uniform_int_distribution<int>(low, high)(engine_); }
   double real(double low, double high) { return std::uniform_real_distribution<double>(low, high)(engine_); }
   std::uint32_t word() { return static_cast<std::uint32_t>(engine_()); }
+  template <class It>
+  void shuffle(It first, It last) {
+    std::shuffle(first, last, engine_);
+  }
   template <class T>
   T pick(std::initializer_list<T> choices) {
     return *(choices.begin() + between(0, static_cast<int>(choices.size()) - 1));
@@ -91,6 +95,7 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
   elapsed += 3;
 
   while (elapsed < ticks) {
+    const std::size_t window = events.size();  // what happens before the next tick, in any order
     // A new client asks for motors no other client of the scenario holds (the device refuses
     // if they are taken after all, or if it is not RUNNING).
     if (clients.size() < 3 && dice.chance(0.004)) {
@@ -218,6 +223,8 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
       zero.count = dice.between(1, 500);
       push(zero);
     }
+
+    dice.shuffle(events.begin() + static_cast<std::ptrdiff_t>(window), events.end());
 
     // SIGTERM, now and then in the middle of everything (the scenario ends with the shutdown stop).
     if (dice.chance(0.00005)) break;
