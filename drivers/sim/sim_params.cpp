@@ -48,8 +48,10 @@ void read_joint_fields(JsonReader& reader, SimJointParams& joint) {
   read_positive(reader, "effort_max_nm", limits.effort_max_nm);
   read_positive(reader, "kp_max", limits.kp_max);
   read_positive(reader, "kd_max", limits.kd_max);
-  read_non_negative(reader, "default_kp", joint.default_kp);
-  read_non_negative(reader, "default_kd", joint.default_kd);
+  // The sim can damp and hold on impedance: a default gain of 0 would let a joint go while
+  // robotd reported DAMPING or KEEP.
+  read_positive(reader, "default_kp", joint.default_kp);
+  read_positive(reader, "default_kd", joint.default_kd);
   read_positive(reader, "inertia_kg_m2", joint.inertia_kg_m2);
   read_non_negative(reader, "damping_nm_s_rad", joint.damping_nm_s_rad);
   read_number(reader, "external_torque_nm", joint.external_torque_nm);

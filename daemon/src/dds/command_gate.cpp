@@ -2,6 +2,7 @@
 
 #include "app/log_text.hpp"
 #include "dds/field_limits.hpp"
+#include "robotd/limits.hpp"
 #include "device/command_admission.hpp"
 #include "session/session_ids.hpp"
 
@@ -37,6 +38,11 @@ void CommandGate::reject_unknown_session(std::string_view uuid, std::string_view
     return;
   }
   counters_[*device]->received.fetch_add(1, std::memory_order_relaxed);
+  if (uuid.size() > limits::kUuidBytes) {  // no uuid at all: malformed, as handle() would call it
+    const Oversize oversize{"uuid", uuid.size(), limits::kUuidBytes, false};
+    reject(*device, control::Rejection::kMalformed, [&] { return oversize.describe(); });
+    return;
+  }
   reject(*device, control::Rejection::kUnknownSession, [&] {
     return std::string(sessions_.is_session_id(uuid)
                            ? "this is a session's public id, not its uuid (only the uuid request_control granted "

@@ -63,20 +63,6 @@ Result<void> Device::configure() {
     model_.default_kd.push_back(joint.default_kd);
     model_.zero_position_rad.push_back(joint.zero_position_rad);
   }
-  // A fallback robotd reports must be one the joints really get: DAMPING with kd 0, or a hold
-  // (KEEP, the safe stop of an impedance device) with kp 0, would let a joint go.
-  for (std::size_t j = 0; j < model_.joint_count(); ++j) {
-    if (model_.behaviors.damping && !(model_.default_kd[j] > 0)) {
-      return invalid(config_.path + ": driver '" + config_.driver + "' gives joint '" + model_.joint_names[j] +
-                     "' default_kd " + std::to_string(model_.default_kd[j]) +
-                     "; it can damp, so its damping gain must be > 0 (set the driver's default gains in params)");
-    }
-    if (model_.supports_torque && !(model_.default_kp[j] > 0)) {
-      return invalid(config_.path + ": driver '" + config_.driver + "' gives joint '" + model_.joint_names[j] +
-                     "' default_kp " + std::to_string(model_.default_kp[j]) +
-                     "; a hold on an impedance joint needs a stiffness > 0 (set the driver's default gains in params)");
-    }
-  }
   for (const auto& override_limits : config_.joint_limits) {
     const auto it = std::find(model_.joint_names.begin(), model_.joint_names.end(), override_limits.joint);
     if (it == model_.joint_names.end()) {
