@@ -83,7 +83,7 @@ TEST(JointLimiter, ShortMoveTakesTheTrianglesTime) {
   EXPECT_NEAR(arrival_s, 0.2, 3 * kDt);
 }
 
-TEST(JointLimiter, OvershootFromRestIsBoundedByAccelerationTimesPeriodSquared) {
+TEST(JointLimiter, BrakingIsExactSoTheSetpointStopsOnTheTargetWithoutOvershoot) {
   for (const double velocity_max : {0.3, 1.0, 4.0}) {
     for (const double acceleration_max : {2.0, 5.0, 40.0}) {
       for (const double distance : {-3.1, -0.7, 0.013, 0.25, 1.0, 2.0}) {
@@ -92,15 +92,73 @@ TEST(JointLimiter, OvershootFromRestIsBoundedByAccelerationTimesPeriodSquared) {
           const auto trajectory = move(0.0, distance, l, 20000, dt);
           const double direction = distance > 0 ? 1.0 : -1.0;
           double overshoot = 0;
-          for (const auto& state : trajectory)
-            overshoot = std::fmax(overshoot, (state.position - distance) * direction);
-          EXPECT_LE(overshoot, acceleration_max * dt * dt)
+          for (std::size_t i = 1; i < trajectory.size(); ++i) {
+            overshoot = std::fmax(overshoot, (trajectory[i].position - distance) * direction);
+            ASSERT_LE(std::fabs(trajectory[i].velocity - trajectory[i - 1].velocity), acceleration_max * dt + kEpsilon);
+          }
+          EXPECT_LE(overshoot, 1e-12)
               << "vmax " << velocity_max << " amax " << acceleration_max << " distance " << distance << " dt " << dt;
           EXPECT_NEAR(trajectory.back().position, distance, 1e-9);
         }
       }
     }
   }
+}
+
+TEST(JointLimiter, StoppingSpeedIsTheSpeedWhoseDiscreteBrakeCoversTheDistanceExactly) {
+  const MotionLimits l = limits(10.0, 5.0);
+  for (const double distance : {1e-6, 0.003, 0.05, 0.4, 2.0}) {
+    const double speed = stopping_speed(distance, l, kDt);
+    // This period at `speed`, then a·dt less every period until rest.
+    double covered = 0;
+    for (double v = speed; v > 0; v -= 5.0 * kDt) covered += v * kDt;
+    EXPECT_NEAR(covered, distance, 1e-12) << distance;
+  }
+  EXPECT_EQ(stopping_speed(0.0, l, kDt), 0.0);
+  EXPECT_EQ(stopping_speed(-1.0, l, kDt), 0.0);
+}
+
+TEST(JointLimiter, AStreamRunningIntoAPositionLimitBrakesInTimeAndNeverCrossesIt) {
+  // The target moves toward the limit at full speed and beyond it: the setpoint must brake to
+  // rest on the limit within the acceleration limit, not be clamped there at speed.
+  const MotionLimits l = limits(1.0, 5.0, -1.0, 0.5);
+  LimiterState state{0.0, 0.0};
+  double previous_velocity = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const double t = i * kDt;
+    state = limit_step(state, 0.2 + 1.0 * t, 1.0, l, kDt);
+    ASSERT_LE(state.position, l.position_max + kEpsilon) << i;
+    ASSERT_LE(std::fabs(state.velocity - previous_velocity), 5.0 * kDt + kEpsilon) << i;
+    previous_velocity = state.velocity;
+  }
+  EXPECT_NEAR(state.position, 0.5, 1e-9);
+  EXPECT_NEAR(state.velocity, 0.0, 1e-9);
+}
+
+TEST(JointLimiter, ASetpointOutsideTheLimitsComesBackInsideAndNeverMovesFurtherOut) {
+  const MotionLimits l = limits(1.0, 5.0, -1.0, 1.0);
+  LimiterState state{1.6, 0.0};  // a joint measured 0.6 rad beyond its (narrowed) limit
+  double previous_velocity = 0;
+  double previous_position = state.position;
+  for (int i = 0; i < 3000; ++i) {
+    state = limit_step(state, 5.0, 0.0, l, kDt);  // even a target further out
+    ASSERT_LE(state.position, previous_position + kEpsilon) << i;
+    ASSERT_LE(std::fabs(state.velocity - previous_velocity), 5.0 * kDt + kEpsilon) << i;
+    previous_velocity = state.velocity;
+    previous_position = state.position;
+  }
+  EXPECT_NEAR(state.position, 1.0, 1e-9);
+}
+
+TEST(JointLimiter, BrakingPointIsWhereAFullBrakeFromTheNextPeriodComesToRest) {
+  const MotionLimits l = limits(2.0, 10.0);
+  const LimiterState moving{0.3, 0.95};
+  const double point = braking_point(moving, l, kDt);
+  LimiterState state = moving;
+  for (int i = 0; i < 500; ++i) state = limit_step(state, point, 0.0, l, kDt);
+  EXPECT_NEAR(state.position, point, 1e-12);
+  // and it did brake from the first period: 0.94 rad/s after one step
+  EXPECT_NEAR(limit_step(moving, point, 0.0, l, kDt).velocity, 0.94, 1e-12);
 }
 
 TEST(JointLimiter, TargetBeyondThePositionLimitSettlesOnTheLimit) {
