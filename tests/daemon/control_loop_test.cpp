@@ -606,7 +606,6 @@ TEST_F(ControlLoopTest, StateIsPublishedEveryTickWithTheLatestFeedback) {
   EXPECT_EQ(channel_->ticks.load(), 2u);
 }
 
-
 // --- the defects the randomized safety test found (tests/safety), one example each ---------
 
 control::JointTargetUpdate mixed_target(std::uint8_t joint, float position, float kp, float kd, float torque) {
@@ -689,7 +688,7 @@ TEST_F(ControlLoopTest, AJointMeasuredBeyondItsLimitComesBackInsideUnderTheLimit
   EXPECT_NEAR(driver_.frames[first].joints[0].position_rad, 2.6, 1e-4);  // starts where it is
   double previous = driver_.frames[first].joints[0].velocity_rad_s * kDt;
   for (const double step : setpoint_steps(0, first)) {
-    ASSERT_LE(std::fabs(step), 1.0 * kDt + 1e-12);                   // velocity limit
+    ASSERT_LE(std::fabs(step), 1.0 * kDt + 1e-12);                    // velocity limit
     ASSERT_LE(std::fabs(step - previous), 10.0 * kDt * kDt + 1e-12);  // acceleration limit
     previous = step;
   }

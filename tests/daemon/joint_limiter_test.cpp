@@ -96,8 +96,8 @@ TEST(JointLimiter, BrakingIsExactSoTheSetpointStopsOnTheTargetWithoutOvershoot) 
             overshoot = std::fmax(overshoot, (trajectory[i].position - distance) * direction);
             ASSERT_LE(std::fabs(trajectory[i].velocity - trajectory[i - 1].velocity), acceleration_max * dt + kEpsilon);
           }
-          EXPECT_LE(overshoot, 1e-12)
-              << "vmax " << velocity_max << " amax " << acceleration_max << " distance " << distance << " dt " << dt;
+          EXPECT_LE(overshoot, 1e-12) << "vmax " << velocity_max << " amax " << acceleration_max << " distance "
+                                      << distance << " dt " << dt;
           EXPECT_NEAR(trajectory.back().position, distance, 1e-9);
         }
       }

@@ -21,7 +21,9 @@ double trajectory(int label, std::size_t j, const DeviceSpec& device, double t_s
 ControlCommand client_command(const ClientSession& session, std::uint32_t seed, const DeviceSpec& device,
                               std::int64_t now_ns) {
   std::mt19937 engine(seed);
-  const auto real = [&engine](double low, double high) { return std::uniform_real_distribution<double>(low, high)(engine); };
+  const auto real = [&engine](double low, double high) {
+    return std::uniform_real_distribution<double>(low, high)(engine);
+  };
   const auto chance = [&real](double p) { return real(0, 1) < p; };
   const double t_s = static_cast<double>(now_ns) * 1e-9;
 
@@ -39,7 +41,8 @@ ControlCommand client_command(const ClientSession& session, std::uint32_t seed, 
   const bool far = chance(0.05);
   for (const auto id : command.motor_ids) {
     const auto j = static_cast<std::size_t>(id);
-    const double position = far ? real(device.position_min, device.position_max) : trajectory(session.label, j, device, t_s);
+    const double position =
+        far ? real(device.position_min, device.position_max) : trajectory(session.label, j, device, t_s);
     command.positions.push_back(static_cast<float>(position));
     if (velocities) command.velocities.push_back(static_cast<float>(real(-device.velocity_max, device.velocity_max)));
     if (gains) {

@@ -27,7 +27,7 @@ bool same(double a, double b) { return std::fabs(a - b) <= kTolerance * std::max
 std::string describe(const driver::JointCommand& c) {
   std::ostringstream out;
   out.precision(9);
-  const char* kind = c.kind == JointCommandKind::kNone ? "none"
+  const char* kind = c.kind == JointCommandKind::kNone       ? "none"
                      : c.kind == JointCommandKind::kPosition ? "position"
                                                              : "impedance";
   out << kind << " p=" << c.position_rad << " v=" << c.velocity_rad_s << " kp=" << c.kp << " kd=" << c.kd
@@ -306,9 +306,10 @@ std::optional<Violation> InvariantChecker::check_events(const TickObservation& t
   };
   std::optional<Violation> broken;
   if (timeouts != expected_timeouts_) {
-    broken = violation(tick, "I7 sessions end on time",
-                       std::string("sessions timed out: ") + list(timeouts) + "; expected: " + list(expected_timeouts_) +
-                           " (" + event_name(device::LoopEvent::Type::kSessionTimedOut) + ")");
+    broken =
+        violation(tick, "I7 sessions end on time",
+                  std::string("sessions timed out: ") + list(timeouts) + "; expected: " + list(expected_timeouts_) +
+                      " (" + event_name(device::LoopEvent::Type::kSessionTimedOut) + ")");
   } else if (ends != expected_ends_) {
     broken = violation(tick, "I7 sessions end on time",
                        "sessions released: " + list(ends) + "; expected: " + list(expected_ends_));
@@ -332,7 +333,8 @@ std::optional<Violation> InvariantChecker::check_state(const TickObservation& ti
                          std::string(to_string(state)));
   }
   if (state != DeviceState::kRunning) return std::nullopt;
-  if (!ever_read_ || tick.now_ns - last_ok_read_ns_ > static_cast<std::int64_t>(spec_.feedback_timeout_ms) * 1'000'000) {
+  if (!ever_read_ ||
+      tick.now_ns - last_ok_read_ns_ > static_cast<std::int64_t>(spec_.feedback_timeout_ms) * 1'000'000) {
     return violation(tick, "I8 faults latch", "RUNNING without fresh feedback for longer than feedback_timeout_ms");
   }
   for (std::size_t j = 0; j < model_.joint_count(); ++j) {
@@ -372,9 +374,9 @@ std::optional<Violation> InvariantChecker::check_frame(const TickObservation& ti
     ++shutdown_pending_ticks_;
     const std::int64_t allowed = spec_.shutdown_ms + 2 + (maintenance_requested_ ? 3 : 0);
     if (shutdown_pending_ticks_ > allowed) {
-      return violation(tick, "I9 shutdown stops", "the loop has not finished its shutdown stop " +
-                                                       std::to_string(shutdown_pending_ticks_) +
-                                                       " ticks after the shutdown request");
+      return violation(tick, "I9 shutdown stops",
+                       "the loop has not finished its shutdown stop " + std::to_string(shutdown_pending_ticks_) +
+                           " ticks after the shutdown request");
     }
   }
   if (!tick.wrote) return std::nullopt;
@@ -404,7 +406,8 @@ std::optional<Violation> InvariantChecker::check_joint(const TickObservation& ti
   const driver::JointLimits& limits = model_.limits[j];
   const std::string name = "joint " + std::to_string(j) + ": ";
   const auto fail = [&](const char* invariant, const std::string& why) {
-    return violation(tick, invariant, name + why + " [" + describe(c) + ", measured " + std::to_string(joint.measured) + "]");
+    return violation(tick, invariant,
+                     name + why + " [" + describe(c) + ", measured " + std::to_string(joint.measured) + "]");
   };
 
   if (!finite(c)) return fail("I5 finite", "a non-finite value reached write()");
@@ -428,10 +431,10 @@ std::optional<Violation> InvariantChecker::check_joint(const TickObservation& ti
   if (c.kind == JointCommandKind::kNone) {
     // Undriven: a joint nobody drives; a joint that was undriven when the safe state began; or,
     // without fresh feedback, a joint that would need a measured position to hold.
-    const bool all_measured = std::all_of(joints_.begin(), joints_.begin() + static_cast<std::ptrdiff_t>(model_.joint_count()),
-                                          [](const Joint& other) { return other.measured_known; });
-    const bool allowed =
-        joint.activity == Activity::kIdle || !all_measured || (safe && joint.idle_before_safe_state);
+    const bool all_measured =
+        std::all_of(joints_.begin(), joints_.begin() + static_cast<std::ptrdiff_t>(model_.joint_count()),
+                    [](const Joint& other) { return other.measured_known; });
+    const bool allowed = joint.activity == Activity::kIdle || !all_measured || (safe && joint.idle_before_safe_state);
     if (!allowed) return fail("I2 nothing stale", "a driven joint was left without a command");
     joint.previous_in_effect = false;
     joint.previous_tick = tick.tick;
@@ -455,10 +458,10 @@ std::optional<Violation> InvariantChecker::check_joint(const TickObservation& ti
       }
       return false;
     };
-    const bool ok = matches(behavior) || (shutting_down_ && (matches(settings_.safe_behavior) ||
-                                                            matches(settings_.shutdown_behavior) ||
-                                                            (joint.activity == Activity::kDamping &&
-                                                             c.kind == JointCommandKind::kImpedance && c.kp == 0)));
+    const bool ok = matches(behavior) ||
+                    (shutting_down_ &&
+                     (matches(settings_.safe_behavior) || matches(settings_.shutdown_behavior) ||
+                      (joint.activity == Activity::kDamping && c.kind == JointCommandKind::kImpedance && c.kp == 0)));
     if (!ok) {
       return fail(estop_ ? "I3 e-stop first" : "I2 nothing stale",
                   std::string("not the ") + std::string(to_string(behavior)) + " safe behaviour in state " +
@@ -545,8 +548,8 @@ std::optional<Violation> InvariantChecker::check_setpoint(const TickObservation&
   const double acceleration_limit = limits.acceleration_max_rad_s2 * dt_s_ * dt_s_ * (1 + 1e-6) + 1e-12;
   const double step = p - joint.previous_position;
   const bool from_measured = std::fabs(p - joint.measured) <= step_limit;
-  const bool smooth = continuous && std::fabs(step) <= step_limit &&
-                      std::fabs(step - joint.previous_step) <= acceleration_limit;
+  const bool smooth =
+      continuous && std::fabs(step) <= step_limit && std::fabs(step - joint.previous_step) <= acceleration_limit;
   const auto fail = [&](const char* invariant, const std::string& why) {
     std::ostringstream out;
     out.precision(9);
@@ -581,7 +584,8 @@ std::optional<Violation> InvariantChecker::check_setpoint(const TickObservation&
       joint.hold_reach = (braking * braking + braking * a * dt_s_) / (2 * a) + 2 * quantum;
     };
     if (!joint.holding || started_here) {
-      begin_hold(started_here ? p : joint.previous_position, started_here ? 0.0 : std::fabs(joint.previous_step) / dt_s_);
+      begin_hold(started_here ? p : joint.previous_position,
+                 started_here ? 0.0 : std::fabs(joint.previous_step) / dt_s_);
     }
     const bool coming_inside = outside(joint.previous_position) > 0 && outside(p) < outside(joint.previous_position);
     const bool speeding_up = !started_here && std::fabs(step) > std::fabs(joint.previous_step) + 1e-12;

@@ -30,7 +30,7 @@ struct TickObservation {
   std::uint64_t tick = 0;
   std::int64_t now_ns = 0;
   driver::IoResult read_result = driver::IoResult::kOk;  // what the driver's read returned
-  const driver::Feedback* read = nullptr;                 // the feedback it gave, if kOk
+  const driver::Feedback* read = nullptr;                // the feedback it gave, if kOk
   bool wrote = false;
   const driver::CommandFrame* frame = nullptr;  // what the loop wrote, if it wrote
   bool write_failed = false;                    // the driver refused the write (link down)
@@ -101,9 +101,9 @@ class InvariantChecker {
     double previous_position = 0;
     double previous_step = 0;
     bool reseed_allowed = true;
-    bool holding = false;     // braking to a stop, then still
-    double hold_origin = 0;   // where the hold began
-    double hold_reach = 0;    // how far from there braking may take it
+    bool holding = false;    // braking to a stop, then still
+    double hold_origin = 0;  // where the hold began
+    double hold_reach = 0;   // how far from there braking may take it
   };
 
   std::optional<Violation> check_state(const TickObservation& tick);
@@ -139,11 +139,11 @@ class InvariantChecker {
   std::uint64_t sequence_ = 0;
   std::array<Joint, driver::kMaxJoints> joints_{};
 
-  bool estop_ = false;                        // engaged and not reset (by the service or the button)
-  std::int64_t estop_pending_ticks_ = -1;     // ticks since engagement without an e-stop frame
-  bool maintenance_requested_ = false;        // since the request, until the loop is back
-  bool safe_ = false;                         // the loop's published state was not RUNNING
-  std::int64_t safe_ended_ns_ = 0;            // targets received before this are stale
+  bool estop_ = false;                     // engaged and not reset (by the service or the button)
+  std::int64_t estop_pending_ticks_ = -1;  // ticks since engagement without an e-stop frame
+  bool maintenance_requested_ = false;     // since the request, until the loop is back
+  bool safe_ = false;                      // the loop's published state was not RUNNING
+  std::int64_t safe_ended_ns_ = 0;         // targets received before this are stale
   bool shutting_down_ = false;
   std::int64_t shutdown_pending_ticks_ = -1;  // ticks since the request without the shutdown stop
   std::int64_t last_ok_read_ns_ = -1;

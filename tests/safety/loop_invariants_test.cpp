@@ -124,8 +124,8 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
   EXPECT_GT(sum.sessions_granted, scenarios);
   EXPECT_GT(sum.commands_accepted, sum.ticks / 10);
   EXPECT_GT(sum.commands_rejected, sum.ticks / 100);
-  for (const DeviceState state : {DeviceState::kRunning, DeviceState::kFault, DeviceState::kEstop,
-                                  DeviceState::kMaintenance}) {
+  for (const DeviceState state :
+       {DeviceState::kRunning, DeviceState::kFault, DeviceState::kEstop, DeviceState::kMaintenance}) {
     EXPECT_GT(sum.ticks_in_state[static_cast<std::size_t>(state)], sum.ticks / 100) << to_string(state);
   }
 }

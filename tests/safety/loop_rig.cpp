@@ -165,7 +165,8 @@ class LoopRig {
         plant_.silent = event.on;
         return std::nullopt;
       case Event::Kind::kNonFinite:
-        if (event.joint < spec_.joints) plant_.non_finite[event.joint][static_cast<std::size_t>(event.field)] = event.on;
+        if (event.joint < spec_.joints)
+          plant_.non_finite[event.joint][static_cast<std::size_t>(event.field)] = event.on;
         return std::nullopt;
       case Event::Kind::kTeleport:
         if (event.joint < spec_.joints) plant_.teleport(event.joint, event.value);

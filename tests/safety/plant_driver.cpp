@@ -6,11 +6,11 @@
 namespace robotd::safety {
 namespace {
 
-constexpr double kInertia = 0.05;          // kg·m²
-constexpr double kGravityTorque = 1.0;     // N·m, pulling every joint toward negative angles
-constexpr double kFriction = 0.05;         // N·m·s/rad
-constexpr double kSpeedLimit = 5.0;        // rad/s: the mechanism's own end stop on speed
-constexpr double kServoFollowing = 0.3;    // a position servo closes this share of its error a tick
+constexpr double kInertia = 0.05;        // kg·m²
+constexpr double kGravityTorque = 1.0;   // N·m, pulling every joint toward negative angles
+constexpr double kFriction = 0.05;       // N·m·s/rad
+constexpr double kSpeedLimit = 5.0;      // rad/s: the mechanism's own end stop on speed
+constexpr double kServoFollowing = 0.3;  // a position servo closes this share of its error a tick
 
 }  // namespace
 
@@ -24,8 +24,8 @@ driver::DeviceDescription PlantDriver::describe() const {
   description.supports_damping = spec_.damping;
   description.supports_zero_torque = spec_.zero_torque;
   for (std::size_t j = 0; j < joint_count_; ++j) {
-    description.joints.push_back(driver::JointDescription{model.joint_names[j], model.limits[j], model.default_kp[j],
-                                                          model.default_kd[j], 0.0});
+    description.joints.push_back(
+        driver::JointDescription{model.joint_names[j], model.limits[j], model.default_kp[j], model.default_kd[j], 0.0});
   }
   return description;
 }
@@ -61,7 +61,8 @@ Result<void> PlantDriver::recover() {
 Result<void> PlantDriver::reset_zero(std::span<const int> joints) {
   if (!wait_for_maintenance()) return make_error(ErrorCode::kRefused, "aborted or failed");
   for (const int joint : joints) {
-    if (joint >= 0 && static_cast<std::size_t>(joint) < joint_count_) joints_[static_cast<std::size_t>(joint)] = Joint{};
+    if (joint >= 0 && static_cast<std::size_t>(joint) < joint_count_)
+      joints_[static_cast<std::size_t>(joint)] = Joint{};
   }
   return {};
 }

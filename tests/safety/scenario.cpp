@@ -241,7 +241,8 @@ std::string to_text(const Event& e) {
   const std::string session = " s=" + std::to_string(e.label);
   switch (e.kind) {
     case Event::Kind::kTick:
-      return "tick n=" + std::to_string(e.count) + (e.latency_us != 0 ? " latency_us=" + std::to_string(e.latency_us) : "");
+      return "tick n=" + std::to_string(e.count) +
+             (e.latency_us != 0 ? " latency_us=" + std::to_string(e.latency_us) : "");
     case Event::Kind::kStart:
       return "start" + session + " motors=" + motors_text(e.motors) + " mode=" + lower(to_string(e.mode)) +
              " fallback=" + lower(to_string(e.behavior)) + " timeout_ms=" + std::to_string(e.timeout_ms) +

@@ -85,7 +85,7 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
   bool estop_input = false;
   bool link_up = true;
   bool silent = false;
-  bool faulty = false;  // something happened that a recover would clear
+  bool faulty = false;          // something happened that a recover would clear
   std::optional<Event> glitch;  // a joint reading non-finite now
   std::size_t elapsed = 0;
 

@@ -3,8 +3,8 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <map>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -101,13 +101,13 @@ class ServiceRig {
     device_ = std::make_unique<device::Device>(config, plugin::LoadedDriver::built_in(std::move(plant), "plant"));
     configured_ = device_->configure();
     if (configured_) configured_ = device_->start(device::Device::LoopRunner::kCaller);
-    sessions_ = std::make_unique<service::SessionService>(std::vector<device::Device*>{device_.get()},
-                                                          session::SessionLimits{}, [] {}, &simulated_now_ns);
+    sessions_ = std::make_unique<service::SessionService>(
+        std::vector<device::Device*>{device_.get()}, session::SessionLimits{}, [] {}, &simulated_now_ns);
     gate_ = std::make_unique<dds::CommandGate>(std::vector<device::Device*>{device_.get()}, *sessions_, surface_);
     black_box_ = std::make_unique<device::BlackBox>(device_->channel(), device_->model());
-    services_ = std::make_unique<service::DeviceServices>(std::vector<device::Device*>{device_.get()},
-                                                          std::vector<device::BlackBox*>{black_box_.get()},
-                                                          std::vector<service::DeviceObserver*>{&observer_}, *sessions_);
+    services_ = std::make_unique<service::DeviceServices>(
+        std::vector<device::Device*>{device_.get()}, std::vector<device::BlackBox*>{black_box_.get()},
+        std::vector<service::DeviceObserver*>{&observer_}, *sessions_);
     device::LoopSettings settings;
     settings.safe_behavior = control::applied_behavior(spec_.safe, device_->model().behaviors);
     settings.shutdown_behavior = control::applied_behavior(spec_.shutdown, device_->model().behaviors);
@@ -185,7 +185,8 @@ class ServiceRig {
         plant_->silent = event.on;
         return std::nullopt;
       case Event::Kind::kNonFinite:
-        if (event.joint < spec_.joints) plant_->non_finite[event.joint][static_cast<std::size_t>(event.field)] = event.on;
+        if (event.joint < spec_.joints)
+          plant_->non_finite[event.joint][static_cast<std::size_t>(event.field)] = event.on;
         return std::nullopt;
       case Event::Kind::kTeleport:
         if (event.joint < spec_.joints) plant_->teleport(event.joint, event.value);
@@ -231,7 +232,8 @@ class ServiceRig {
     auto broken = checker_->check(observation);
     if (trace_ != nullptr) {
       std::fprintf(trace_, "tick %llu %s%s\n", static_cast<unsigned long long>(tick_),
-                   std::string(to_string(state_.state)).c_str(), plant_->wrote && plant_->frame.estop ? " ESTOP-FRAME" : "");
+                   std::string(to_string(state_.state)).c_str(),
+                   plant_->wrote && plant_->frame.estop ? " ESTOP-FRAME" : "");
     }
 
     // The state publisher's job in robotd: sessions the loop ended leave the session table.
@@ -330,7 +332,8 @@ class ServiceRig {
     request.uuid = client->second.uuid;
     request.release_mode = event.behavior;
     const ReleaseControlResponse response = sessions_->release_control(request);
-    if (response.success && session) checker_->on_release_posted(session->slot, session->generation, response.applied_behavior);
+    if (response.success && session)
+      checker_->on_release_posted(session->slot, session->generation, response.applied_behavior);
   }
 
   std::optional<Violation> command(const Event& event) {

@@ -20,7 +20,11 @@ std::string signature(const Violation& violation) {
 class Shrinker {
  public:
   Shrinker(const Scenario& failing, const RunResult& failure, Runner runner, std::size_t max_replays)
-      : run_(runner), best_(failing), best_result_(failure), kind_(signature(*failure.violation)), budget_(max_replays) {
+      : run_(runner),
+        best_(failing),
+        best_result_(failure),
+        kind_(signature(*failure.violation)),
+        budget_(max_replays) {
     best_.events.resize(std::min(best_.events.size(), failure.events_run));
   }
 
@@ -55,7 +59,8 @@ class Shrinker {
       for (std::size_t start = 0; start < best_.events.size(); start += chunk) {
         std::vector<Event> events = best_.events;
         const std::size_t end = std::min(events.size(), start + chunk);
-        events.erase(events.begin() + static_cast<std::ptrdiff_t>(start), events.begin() + static_cast<std::ptrdiff_t>(end));
+        events.erase(events.begin() + static_cast<std::ptrdiff_t>(start),
+                     events.begin() + static_cast<std::ptrdiff_t>(end));
         if (still_fails(std::move(events))) {
           removed = true;
           break;
@@ -77,12 +82,14 @@ class Shrinker {
       if (best_.events[i].kind != Event::Kind::kTick) continue;
       std::size_t end = i + 1;
       int count = best_.events[i].count;
-      while (end < best_.events.size() && best_.events[end].kind == Event::Kind::kTick) count += best_.events[end++].count;
+      while (end < best_.events.size() && best_.events[end].kind == Event::Kind::kTick)
+        count += best_.events[end++].count;
       if (end == i + 1) continue;
       std::vector<Event> events = best_.events;
       events[i].count = count;
       events[i].latency_us = 0;
-      events.erase(events.begin() + static_cast<std::ptrdiff_t>(i + 1), events.begin() + static_cast<std::ptrdiff_t>(end));
+      events.erase(events.begin() + static_cast<std::ptrdiff_t>(i + 1),
+                   events.begin() + static_cast<std::ptrdiff_t>(end));
       (void)still_fails(std::move(events));
     }
   }

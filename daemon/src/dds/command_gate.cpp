@@ -2,8 +2,8 @@
 
 #include "app/log_text.hpp"
 #include "dds/field_limits.hpp"
-#include "robotd/limits.hpp"
 #include "device/command_admission.hpp"
+#include "robotd/limits.hpp"
 #include "session/session_ids.hpp"
 
 namespace robotd::dds {

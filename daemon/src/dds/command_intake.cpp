@@ -59,7 +59,8 @@ bool CommandIntake::admits(const void* sample, void* intake) {
   const auto& command = *static_cast<const wire::Wire<ControlCommand>::C*>(sample);
   auto& self = *static_cast<CommandIntake*>(intake);
   try {
-    return self.gate_.admit(command.uuid != nullptr ? command.uuid : "", command.device != nullptr ? command.device : "");
+    return self.gate_.admit(command.uuid != nullptr ? command.uuid : "",
+                            command.device != nullptr ? command.device : "");
   } catch (const std::exception&) {
     return false;  // counted before the log line that failed; no exception may reach Cyclone
   }

@@ -56,8 +56,8 @@ void ControlLoop::run() noexcept {
     tick(deadline, wake);
     const std::int64_t end = rt::monotonic_now_ns();
     last_execution_ns_ = end - wake;
-    channel_.timings.push(TickTiming{wake - deadline, last_execution_ns_,
-                                     previous_wake == 0 ? period_ns_ : wake - previous_wake});
+    channel_.timings.push(
+        TickTiming{wake - deadline, last_execution_ns_, previous_wake == 0 ? period_ns_ : wake - previous_wake});
     previous_wake = wake;
     deadline += period_ns_;
     if (end > deadline) {
@@ -456,7 +456,8 @@ void ControlLoop::take_feedback(std::int64_t now_ns) noexcept {
     // now (a reconnect, a new zero). Whatever tracks starts again from where it is measured.
     reinit_pending_ = false;
     for (std::size_t j = 0; j < joint_count_; ++j) {
-      if (joints_[j].mode == JointMode::kTrack) control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr));
+      if (joints_[j].mode == JointMode::kTrack)
+        control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr));
     }
   }
 }

@@ -100,9 +100,9 @@ class ControlLoop {
 
   std::array<control::JointControl, kMaxJoints> joints_{};
   std::array<control::JointMode, kMaxJoints> saved_modes_{};  // what to resume after the safe state
-  std::array<double, kMaxJoints> saved_kd_{};                  // the damping gain to resume with
-  std::array<std::int64_t, kMaxJoints> last_finite_ns_{};  // the joint's last finite position and velocity
-  std::array<bool, kMaxJoints> measured_{};               // a finite reading has arrived since the link came up
+  std::array<double, kMaxJoints> saved_kd_{};                 // the damping gain to resume with
+  std::array<std::int64_t, kMaxJoints> last_finite_ns_{};     // the joint's last finite position and velocity
+  std::array<bool, kMaxJoints> measured_{};                   // a finite reading has arrived since the link came up
   std::array<JointOwner, kMaxJoints> owners_{};
   std::array<SlotRuntime, kMaxSessionsPerDevice> slots_{};
   std::array<control::MotionLimits, kMaxJoints> motion_limits_{};

@@ -136,7 +136,7 @@ struct DeviceChannel {
   std::atomic<bool> black_box_frozen{false};  // RT stops writing until cleared
 
   std::atomic<bool> estop{false};
-  std::atomic<bool> estop_input_pressed{false};  // RT → services: the device's e-stop input, now
+  std::atomic<bool> estop_input_pressed{false};   // RT → services: the device's e-stop input, now
   std::atomic<std::int64_t> estop_reached_ns{0};  // RT → services: when the first e-stop frame since the
                                                   // engagement reached the driver (CLOCK_MONOTONIC), 0 = not yet
   std::atomic<bool> maintenance_requested{false};

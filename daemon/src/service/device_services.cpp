@@ -148,16 +148,16 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
       reached += (reached.empty() ? "" : ", ") + text.str();
     } else {
       const device::LoopState state = observers_[targets[t]]->latest();
-      const std::string why = state.state == DeviceState::kFault
-                                  ? "FAULT: " + std::string(state.fault.text.data())
-                                  : std::string(to_string(state.state));
+      const std::string why = state.state == DeviceState::kFault ? "FAULT: " + std::string(state.fault.text.data())
+                                                                 : std::string(to_string(state.state));
       unreached += (unreached.empty() ? "'" : "; '") + name + "' (" + why + ")";
     }
   }
   std::string message = "e-stop engaged by '" + who + "'";
   if (!reached.empty()) message += "; reached " + reached;
   if (!unreached.empty()) {
-    message += "; NOT confirmed on " + unreached + ": robotd cannot reach it now and keeps sending the e-stop every tick";
+    message +=
+        "; NOT confirmed on " + unreached + ": robotd cannot reach it now and keeps sending the e-stop every tick";
   }
   spdlog::warn("{}{}", message, reason.empty() ? "" : " (" + reason + ")");
   return EstopResponse{true, message};

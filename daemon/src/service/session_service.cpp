@@ -56,7 +56,8 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
     }
     device::Device& device = *devices_[device_index.value()];
     if (const std::string& operation = maintenance_[device_index.value()]; !operation.empty()) {
-      response.message = "device '" + device.model().name + "' is in maintenance (" + operation + "); retry when it is done";
+      response.message =
+          "device '" + device.model().name + "' is in maintenance (" + operation + "); retry when it is done";
       return response;
     }
     // The e-stop flag first: the state the loop publishes lags it by up to a tick.
@@ -192,12 +193,12 @@ Result<void> SessionService::reserve_for_maintenance(std::size_t device, const s
   const std::lock_guard lock(mutex_);
   const std::string& name = devices_[device]->model().name;
   if (!maintenance_[device].empty()) {
-    return make_error(ErrorCode::kRefused,
-                      "device '" + name + "' is already in maintenance (" + maintenance_[device] + "); retry when it is done");
+    return make_error(ErrorCode::kRefused, "device '" + name + "' is already in maintenance (" + maintenance_[device] +
+                                               "); retry when it is done");
   }
   if (const std::string holders = table_.holders(device, monotonic_now_ns_()); !holders.empty()) {
-    return make_error(ErrorCode::kRefused, operation + " is refused while a session is active on '" + name + "': " +
-                                               holders + "; release it first");
+    return make_error(ErrorCode::kRefused, operation + " is refused while a session is active on '" + name +
+                                               "': " + holders + "; release it first");
   }
   maintenance_[device] = operation;
   return {};
