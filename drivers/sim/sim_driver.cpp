@@ -157,7 +157,10 @@ IoResult SimDriver::read_at(std::int64_t now_ns, Feedback& out, FaultInfo& fault
 
 IoResult SimDriver::write(const CommandFrame& command, FaultInfo& fault) noexcept {
   if (!refresh_link_state(fault)) return IoResult::kDisconnected;
-  if (const IoResult status = injected_link_status(fault); status != IoResult::kOk) return status;
+  // A controller in fault still takes frames over its link (the e-stop above all); it reports
+  // the fault with them. Only a lost link takes nothing.
+  const IoResult status = injected_link_status(fault);
+  if (status == IoResult::kDisconnected) return status;
   command_ = command;
   if (command.newest_command_sent_ns != 0) {
     // How long the newest client command took from its publish to this write().
@@ -168,7 +171,7 @@ IoResult SimDriver::write(const CommandFrame& command, FaultInfo& fault) noexcep
         std::memory_order_relaxed);
     latency_count_.store(count + 1, std::memory_order_release);
   }
-  return IoResult::kOk;
+  return status;
 }
 
 bool SimDriver::refresh_link_state(FaultInfo& fault) noexcept {

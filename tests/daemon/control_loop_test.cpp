@@ -48,9 +48,10 @@ class RecordingDriver final : public driver::Driver {
     }
     return read_result;
   }
-  driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& /*fault*/) noexcept override {
+  driver::IoResult write(const driver::CommandFrame& command, driver::FaultInfo& fault) noexcept override {
     frames.push_back(command);
-    return driver::IoResult::kOk;
+    if (write_result != driver::IoResult::kOk) fault = fault_to_report;
+    return write_result;
   }
 
   Result<nlohmann::json> call(const std::string& op, const nlohmann::json& /*args*/) override {
@@ -60,6 +61,7 @@ class RecordingDriver final : public driver::Driver {
 
   driver::Feedback feedback{};
   driver::IoResult read_result = driver::IoResult::kOk;
+  driver::IoResult write_result = driver::IoResult::kOk;
   driver::FaultInfo fault_to_report{};
   std::vector<driver::CommandFrame> frames;
   int reads = 0;
@@ -820,6 +822,29 @@ TEST_F(ControlLoopTest, TheEstopFrameGoesOutBeforeTheDeviceHasEverBeenMeasured) 
   ASSERT_EQ(driver_.frames.size(), 1U);
   EXPECT_TRUE(frame().estop);
   EXPECT_GT(channel_->estop_reached_ns.load(), 0);
+}
+
+TEST_F(ControlLoopTest, AnEstopFrameTakenByADeviceInFaultHasReachedItAndOneBehindALostLinkHasNot) {
+  tick();
+  driver_.fault_to_report.set(42, "joint 3 over temperature");
+  driver_.read_result = driver::IoResult::kFault;
+  driver_.write_result = driver::IoResult::kFault;  // the device reports its fault, and takes the frame
+  tick();
+  ASSERT_EQ(device_state(), DeviceState::kFault);
+  channel_->estop.store(true);
+  tick();
+  EXPECT_TRUE(frame().estop);
+  EXPECT_GT(channel_->estop_reached_ns.load(), 0);
+
+  channel_->estop.store(false);
+  tick();
+  EXPECT_EQ(channel_->estop_reached_ns.load(), 0);
+  driver_.read_result = driver::IoResult::kDisconnected;
+  driver_.write_result = driver::IoResult::kDisconnected;
+  channel_->estop.store(true);
+  run_ms(5);
+  EXPECT_TRUE(frame().estop) << "robotd keeps sending the e-stop every tick";
+  EXPECT_EQ(channel_->estop_reached_ns.load(), 0);
 }
 
 TEST_F(ControlLoopTest, AShutdownDuringMaintenanceAbortsItAndThenRunsTheShutdownStop) {

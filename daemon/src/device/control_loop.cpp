@@ -502,9 +502,10 @@ void ControlLoop::write_command(std::int64_t deadline_ns, std::int64_t now_ns) n
     frame_.joints[j].owned = owners_[j].slot >= 0;
   }
   const driver::IoResult result = driver_.write(frame_, io_fault_);
-  if (is_link_problem(result)) {
-    latch_io_fault(result, now_ns);
-  } else if (estop_applied_ && channel_.estop_reached_ns.load(std::memory_order_relaxed) == 0) {
+  if (is_link_problem(result)) latch_io_fault(result, now_ns);
+  // A device reporting a fault has still been handed the frame (driver.hpp); a lost link has not.
+  if (result != driver::IoResult::kDisconnected && estop_applied_ &&
+      channel_.estop_reached_ns.load(std::memory_order_relaxed) == 0) {
     channel_.estop_reached_ns.store(rt::monotonic_now_ns(), std::memory_order_release);
   }
 }

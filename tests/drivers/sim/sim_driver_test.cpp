@@ -274,6 +274,12 @@ TEST_F(SimDriverTest, InjectedFaultReportsItsCodeAndTextUntilRecover) {
   EXPECT_STREQ(fault_.text.data(), "joint 3 over temperature");
   EXPECT_EQ(driver_.write(position_frame(-0.4), fault_), IoResult::kFault);
   EXPECT_EQ(diagnostic("injected_fault"), "code 42: joint 3 over temperature");
+  // The controller in fault still takes frames: robotd's e-stop reaches it.
+  CommandFrame estopped = position_frame(-0.4);
+  estopped.estop = true;
+  EXPECT_EQ(driver_.write(estopped, fault_), IoResult::kFault);
+  EXPECT_EQ(read(), IoResult::kFault);
+  EXPECT_EQ(diagnostic("estop"), "engaged");
   EXPECT_EQ(call("state")["injected_fault"]["code"], 42);
   const double position_before_recover = call("state")["joints"][0]["position_rad"];
 

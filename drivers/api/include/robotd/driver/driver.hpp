@@ -95,6 +95,11 @@ class Driver {
   virtual void abort_maintenance() noexcept = 0;
 
   /// Before a successful connect() or recover(), read and write return kDisconnected.
+  /// write returns kDisconnected only when the frame could not be handed to the device; a
+  /// device that reports a fault still takes the frame (its e-stop above all), and write then
+  /// returns kFault. robotd counts an e-stop frame as having reached the device unless write
+  /// returned kDisconnected, so a driver that decimates to a slower native rate sends an e-stop
+  /// frame on the tick it first arrives.
   virtual IoResult read(Feedback& out, FaultInfo& fault) noexcept = 0;
   virtual IoResult write(const CommandFrame& command, FaultInfo& fault) noexcept = 0;
 

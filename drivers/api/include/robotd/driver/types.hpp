@@ -90,7 +90,7 @@ struct FaultInfo {
 enum class IoResult : std::uint8_t {
   kOk,            // read: fresh feedback in `out`; write: command handed to the device
   kNoNewData,     // read only: nothing new since the last read (not an error by itself)
-  kFault,         // the device reports a fault, described in FaultInfo
+  kFault,         // the device reports a fault, described in FaultInfo (write: the command still went out)
   kDisconnected,  // the link is gone, described in FaultInfo
 };
 
