@@ -68,6 +68,7 @@ void DriverLoop::tick() {
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
   driver::FaultInfo write_fault;
   last_write_ = driver_.write(command, write_fault);
+  if (last_write_ == IoResult::kFault) write_faults_.fetch_add(1);
   if (write_fault.code != 0) {
     const std::lock_guard lock(mutex_);
     fault_ = write_fault;

@@ -33,6 +33,8 @@ class DriverLoop {
   driver::Feedback feedback();
   driver::IoResult last_read() const { return last_read_.load(); }
   driver::IoResult last_write() const { return last_write_.load(); }
+  /// How many write() calls have reported kFault.
+  int write_faults() const { return write_faults_.load(); }
   /// The text of the last fault read() or write() reported.
   std::string fault_text();
   /// Waits until `done(*this)` or the timeout.
@@ -58,6 +60,7 @@ class DriverLoop {
   driver::FaultInfo fault_;
   std::atomic<driver::IoResult> last_read_{driver::IoResult::kNoNewData};
   std::atomic<driver::IoResult> last_write_{driver::IoResult::kOk};
+  std::atomic<int> write_faults_{0};
   std::atomic<bool> paused_{false};
   std::atomic<bool> idle_{false};
   std::atomic<bool> running_{true};

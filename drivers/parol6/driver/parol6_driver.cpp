@@ -261,8 +261,11 @@ driver::IoResult Parol6Driver::write(const driver::CommandFrame& command, driver
     fault = not_connected_fault_;
     return driver::IoResult::kDisconnected;
   }
-  estop_ = command.estop;
   const std::int64_t now_ns = command.tick_deadline_ns;
+  // robotd counts an e-stop frame as delivered when write() returns: it goes out now, not at
+  // the next exchange (up to a period later).
+  if (command.estop && !estop_) next_exchange_ns_ = std::min(next_exchange_ns_, now_ns);
+  estop_ = command.estop;
   if (now_ns < next_exchange_ns_) return driver::IoResult::kOk;
   next_exchange_ns_ = std::max(next_exchange_ns_ + exchange_period_ns_, now_ns + exchange_period_ns_ / 2);
 

@@ -332,6 +332,11 @@ driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver:
     fault = not_connected_fault_;
     return driver::IoResult::kDisconnected;
   }
+  const std::int64_t now_ns = monotonic_now_ns();
+  if (estop_ && !command.estop) {
+    resume_deadline_ns_ = now_ns + static_cast<std::int64_t>(params_.reply_timeout_ms) * 1'000'000;
+  }
+  if (arm_.status.arm_status != 0x01) resume_deadline_ns_ = 0;  // resumed
   estop_ = command.estop;
   const bool hold = hold_for_ops_.load(std::memory_order_acquire);
   streamer_.plan(command, arm_, hold, outgoing_);
@@ -340,7 +345,7 @@ driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver:
     const transport::CanIo result = send(outgoing_.frames[i]);
     if (result == transport::CanIo::kClosed) return link_lost(fault, "CAN link closed");
   }
-  const driver::FaultInfo reported = arm_fault(arm_, estop_, params_.gripper);
+  const driver::FaultInfo reported = arm_fault(arm_, estop_ || now_ns < resume_deadline_ns_, params_.gripper);
   if (reported.code != 0) {
     fault = reported;
     return driver::IoResult::kFault;

@@ -124,6 +124,9 @@ class PiperDriver final : public driver::Driver {
   CommandStreamer streamer_;
   OutgoingFrames outgoing_;
   bool estop_ = false;
+  // After robotd's e-stop reset the arm reports its e-stop until it has taken the resume: until
+  // then (at most reply_timeout_ms) that is still robotd's own e-stop, not a fault.
+  std::int64_t resume_deadline_ns_ = 0;
   driver::FaultInfo lost_fault_;  // why the link was lost
   // Why the last connect failed (set while the loop is paused or not yet running).
   driver::FaultInfo not_connected_fault_ = [] {

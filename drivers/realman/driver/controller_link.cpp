@@ -185,6 +185,7 @@ void ControllerLink::serve(Clock::time_point now) {
   if (udp_.is_open()) read_push();
   if (lost_) return;
   if (!settings_.push && now >= next_poll_at_) poll_state(now);
+  follow_estop();
   if (now >= next_stream_at_) stream(now);
   tracker_.expire(now);
   if (last_feedback_at_ != Clock::time_point{} && now - last_feedback_at_ > settings_.feedback_timeout) {
@@ -393,21 +394,24 @@ void ControllerLink::publish(const Sample& sample, Clock::time_point now) {
   last_feedback_at_ = now;
 }
 
+void ControllerLink::follow_estop() {
+  // On every pass, not every command period: the RT thread wakes this thread when an e-stop
+  // begins. Never wait for the RT thread's store: with io_priority at or above the loop's (or a
+  // loop without SCHED_FIFO) the writer may not get the CPU back while this thread waits. A store
+  // in progress means the previous target, one pass longer.
+  (void)target_.try_load(target_read_);
+  if (target_read_.estop && !estop_sent_) {
+    send_unawaited(plain_request("set_arm_stop"));
+    streaming_ = false;
+  }
+  estop_sent_ = target_read_.estop;
+}
+
 void ControllerLink::stream(Clock::time_point now) {
   next_stream_at_ += settings_.command_period;
   if (next_stream_at_ <= now) next_stream_at_ = now + settings_.command_period;  // late: skip, do not burst
-  // Never wait for the RT thread's store: with io_priority at or above the loop's (or a loop
-  // without SCHED_FIFO) the writer may not get the CPU back while this thread waits. A store in
-  // progress means the previous target, one command period longer.
-  (void)target_.try_load(target_read_);
-  const StreamTarget target = target_read_;
-  if (target.estop) {
-    if (!estop_sent_) send_unawaited(plain_request("set_arm_stop"));
-    estop_sent_ = true;
-    streaming_ = false;
-    return;
-  }
-  estop_sent_ = false;
+  const StreamTarget target = target_read_;                                      // follow_estop() read it on this pass
+  if (target.estop) return;
   const ArmFeedback& measured = latest_;
   if (!target.active) {
     // The session ended or timed out while the arm was still on its way (low follow, filtering):

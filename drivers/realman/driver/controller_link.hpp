@@ -7,7 +7,8 @@
 //   thread polls get_current_arm_state instead.
 // - Streaming: every command period the thread takes the RT thread's latest StreamTarget and
 //   sends one movej_canfd, each joint limited to what pass-through accepts per frame.
-// The RT thread only touches the sequence locks: publish_target(), try_feedback(), try_health().
+// The RT thread only touches the sequence locks, publish_target(), try_feedback(), try_health(),
+// and the link thread's eventfd when an e-stop begins (a non-blocking write).
 #pragma once
 
 #include <array>
@@ -122,7 +123,13 @@ class ControllerLink {
 
   // RT thread: never waits for the link thread. A try_ that fails (the link thread, preempted by
   // the RT thread, is mid-store) leaves `out` as it was: the caller keeps its previous copy.
-  void publish_target(const StreamTarget& target) noexcept { target_.store(target); }
+  /// An e-stop that begins wakes the link thread, so its stop command goes out now rather than at
+  /// the thread's next wake-up (robotd counts the e-stop as delivered once write() returned).
+  void publish_target(const StreamTarget& target) noexcept {
+    target_.store(target);
+    if (target.estop && !published_estop_) io_.wake();
+    published_estop_ = target.estop;
+  }
   bool try_feedback(ArmFeedback& out) const noexcept { return feedback_.try_load(out); }
   bool try_health(LinkHealth& out) const noexcept { return health_.try_load(out); }
 
@@ -146,6 +153,7 @@ class ControllerLink {
   void read_push();
   void take_requests(Clock::time_point now);
   void flush_tcp();
+  void follow_estop();
   void stream(Clock::time_point now);
   /// Every joint still (and, with `target`, within 2 mrad of it).
   bool at_rest(const ArmFeedback& measured, const JointValues* target) const;
@@ -175,6 +183,7 @@ class ControllerLink {
 
   // Between the RT thread (or readers) and the link thread.
   driver::SeqLock<StreamTarget> target_;
+  bool published_estop_ = false;  // RT thread only
   driver::SeqLock<ArmFeedback> feedback_;
   driver::SeqLock<LinkHealth> health_;
   driver::SeqLock<LinkCounters> counters_;

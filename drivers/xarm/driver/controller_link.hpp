@@ -9,7 +9,8 @@
 // - Servo streaming (servo_phase.hpp): while the RT thread's StreamTarget is active the thread
 //   puts the arm into servo mode and sends one servo_j per servo period, each joint limited to
 //   what the arm accepts per step; when it ends, back to position mode.
-// The RT thread only touches the sequence locks: publish_target(), try_feedback(), try_health().
+// The RT thread only touches the sequence locks, publish_target(), try_feedback(), try_health(),
+// and the link thread's eventfd when an e-stop begins (a non-blocking write).
 #pragma once
 
 #include <array>
@@ -120,7 +121,13 @@ class ControllerLink {
 
   // RT thread: never waits for the link thread. A try_ that fails (the link thread, preempted by
   // the RT thread, is mid-store) leaves `out` as it was: the caller keeps its previous copy.
-  void publish_target(const StreamTarget& target) noexcept { target_.store(target); }
+  /// An e-stop that begins wakes the link thread, so its stop command goes out now rather than at
+  /// the thread's next wake-up (robotd counts the e-stop as delivered once write() returned).
+  void publish_target(const StreamTarget& target) noexcept {
+    target_.store(target);
+    if (target.estop && !published_estop_) io_.wake();
+    published_estop_ = target.estop;
+  }
   bool try_feedback(ArmFeedback& out) const noexcept { return feedback_.try_load(out); }
   bool try_health(LinkHealth& out) const noexcept { return health_.try_load(out); }
 
@@ -179,6 +186,7 @@ class ControllerLink {
 
   // Between the RT thread (or readers) and the link thread.
   driver::SeqLock<StreamTarget> target_;
+  bool published_estop_ = false;  // RT thread only
   driver::SeqLock<ArmFeedback> feedback_;
   driver::SeqLock<LinkHealth> health_;
   driver::SeqLock<LinkCounters> counters_;

@@ -17,6 +17,7 @@
 #include "maintenance_abort.hpp"
 #include "parol6_sim_process.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "robotd/driver/monotonic_clock.hpp"
 
 namespace robotd::parol6 {
 namespace {
@@ -138,6 +139,25 @@ TEST_F(Parol6DriverTest, EstopInputIsReportedAndDisablesTheBoard) {
   })) << "DISABLE while the E-stop input is pressed";
   ASSERT_TRUE(sim_.control({{"op", "estop"}, {"pressed", false}})["ok"].get<bool>());
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return !l.feedback().estop_input; }));
+}
+
+// robotd counts an e-stop frame as delivered when write() returns, so it must not wait for the
+// next 100 Hz exchange. No read() here: nothing else would send a frame.
+TEST_F(Parol6DriverTest, AnEstopGoesOutOnTheTickItArrivesNotAtTheNextExchange) {
+  ASSERT_TRUE(driver_.connect());
+  driver::FaultInfo fault;
+  driver::CommandFrame frame = position_frame(standby_rad());
+  frame.tick_deadline_ns = driver::monotonic_now_ns();
+  ASSERT_EQ(driver_.write(frame, fault), IoResult::kOk);  // an exchange: the next is 5 to 10 ms later
+  frame.estop = true;
+  frame.tick_deadline_ns += 1'000'000;
+  ASSERT_EQ(driver_.write(frame, fault), IoResult::kOk);
+  bool disabled = false;
+  for (int i = 0; i < 200 && !disabled; ++i) {
+    disabled = sim_.control({{"op", "state"}})["command"] == 102;
+    if (!disabled) std::this_thread::sleep_for(5ms);
+  }
+  EXPECT_TRUE(disabled) << "the board never got DISABLE from the e-stop frame";
 }
 
 TEST_F(Parol6DriverTest, HomeRunsTheBoardsSequence) {

@@ -188,6 +188,8 @@ TEST_F(PiperDriverTest, EstopStopsTheArmAndResetResumesIt) {
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[0].position_rad - 0.3) < 0.01; }))
       << "resumed, re-enabled and moving again";
   EXPECT_FALSE(sim_.control({{"op", "state"}})["estop"].get<bool>());
+  EXPECT_EQ(loop.write_faults(), 0) << "the arm's e-stop until it took the resume is robotd's own, not a fault: "
+                                    << loop.fault_text();
 }
 
 TEST_F(PiperDriverTest, ArmFaultIsReportedWithItsTextAndRecoverClearsIt) {
