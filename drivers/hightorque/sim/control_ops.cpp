@@ -40,6 +40,7 @@ json motor_json(const SimMotor& motor) {
           {"torque_nm", motor.torque_nm()},
           {"mode", mode_text(mode)},
           {"mode_code", mode},
+          {"mode_commanded_ns", motor.mode_commanded_ns()},
           {"fault", motor.fault()},
           {"kp", motor.stored().kp},
           {"kd", motor.stored().kd},

@@ -39,9 +39,14 @@ void SimMotor::command(const MotorRequest& request) {
   stored_.current_q_a = carried(true, in.current_q_a, stored_.current_q_a);
   stored_.mode = in.mode;
   if (in.mode != mode_) {
-    mode_ = in.mode;
+    enter_mode(in.mode, last_heard_ns_);
     reset_references();
   }
+}
+
+void SimMotor::enter_mode(Mode mode, std::int64_t commanded_ns) {
+  mode_ = mode;
+  mode_commanded_ns_ = commanded_ns;
 }
 
 void SimMotor::reset_references() {
@@ -57,7 +62,7 @@ void SimMotor::set_zero() {
 
 void SimMotor::soft_reboot() {
   ++reboots_;
-  mode_ = Mode::kStop;
+  enter_mode(Mode::kStop, 0);
   stored_ = MotorCommand{};
   timeout_ms_ = 0;
   timed_out_ = false;
@@ -121,7 +126,7 @@ void SimMotor::teleport(double position_rad) {
 
 void SimMotor::inject_fault(std::uint8_t code) {
   injected_fault_ = code;
-  mode_ = Mode::kStop;
+  enter_mode(Mode::kStop, 0);
   reset_references();
 }
 
@@ -224,7 +229,7 @@ void SimMotor::step(double dt_s, std::int64_t now_ns) {
     timed_out_ = true;
     event_ = true;
     if (!free_wheeling()) {
-      mode_ = Mode::kBrake;
+      enter_mode(Mode::kBrake, 0);
       reset_references();
     }
   }
@@ -243,7 +248,7 @@ void SimMotor::step(double dt_s, std::int64_t now_ns) {
   if (!over_temperature_ && temperature_c_ > C::kOverTemperatureC) {
     over_temperature_ = true;
     event_ = true;
-    mode_ = Mode::kStop;
+    enter_mode(Mode::kStop, 0);
     reset_references();
   } else if (over_temperature_ && temperature_c_ < C::kOverTemperatureClearC) {
     over_temperature_ = false;

@@ -86,6 +86,8 @@ class SimMotor {
   double torque_nm() const { return rotor_.motor_torque_nm; }
   /// The mode it runs in: STOP while a fault free-wheels it, BRAKE after the watchdog fired.
   Mode mode() const { return mode_; }
+  /// CLOCK_MONOTONIC of the request that put it in that mode; 0 when it went there by itself.
+  std::int64_t mode_commanded_ns() const { return mode_commanded_ns_; }
   std::uint8_t fault() const;
   const MotorCommand& stored() const { return stored_; }
   std::uint16_t timeout_ms() const { return timeout_ms_; }
@@ -105,12 +107,14 @@ class SimMotor {
   ::robotd::sim::MotorLaw law(double dt_s, double& effort_max_nm);
   bool free_wheeling() const { return injected_fault_ != 0 || over_temperature_; }
   void reset_references();
+  void enter_mode(Mode mode, std::int64_t commanded_ns);
 
   int id_;
   MotorPhysics physics_;
   ::robotd::sim::JointState rotor_;
   double zero_offset_rad_ = 0;
   Mode mode_ = Mode::kStop;
+  std::int64_t mode_commanded_ns_ = 0;
   MotorCommand stored_;                // the last value of every field, in the motor frame
   double reference_position_rad_ = 0;  // profiled modes
   double reference_velocity_rad_s_ = 0;

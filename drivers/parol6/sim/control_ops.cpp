@@ -156,6 +156,7 @@ json Simulator::state() const {
   return {{"ok", true},
           {"joints", joints},
           {"command", arm.command()},
+          {"command_since_ns", command_since_ns_},
           {"enabled", !arm.disabled()},
           {"homed", homed},
           {"homed_byte", homed_byte(arm.homed_mask())},

@@ -108,7 +108,9 @@ void Simulator::on_frame(std::span<const std::uint8_t> body, std::int64_t now_ns
   image[kFieldBytes + 1] = 0x02;
   const auto frame = decode_host_body(image);
   if (!frame) return;  // cannot happen: the image always holds every field
+  const std::uint8_t command_before = board_.arm().command();
   send_reply(board_.answer(*frame, now_ns));
+  if (board_.arm().command() != command_before) command_since_ns_ = now_ns;
 }
 
 void Simulator::send_reply(const RobotFrame& reply) {

@@ -78,6 +78,7 @@ class Simulator {
 
   std::uint64_t bytes_received_ = 0;
   std::uint64_t frames_received_ = 0;    // valid frames (end bytes 01 02)
+  std::int64_t command_since_ns_ = 0;    // CLOCK_MONOTONIC: the frame that brought the command in force
   std::uint64_t rejected_base_ = 0;      // parser_.rejected() at the last reset_counters
   std::uint64_t frames_unanswered_ = 0;  // valid frames read during a silence
   std::uint64_t replies_sent_ = 0;

@@ -189,6 +189,7 @@ json Simulator::state() const {
           {"angle_limit_bits", arm_.angle_limit_bits()},
           {"comm_error_bits", arm_.comm_error_bits()},
           {"estop", arm_.estop()},
+          {"estop_since_ns", arm_.estop() ? estop_since_ns_ : 0},
           {"collision_levels", arm_.settings().collision_levels},
           {"payload", arm_.settings().payload},
           {"master_slave", arm_.settings().master_slave.linkage},

@@ -97,7 +97,9 @@ void Simulator::poll_bus() {
     if (result == transport::CanIo::kBusError) continue;
     ++frames_received_[message.extended ? message.id | 0x80000000U : message.id];
     replies.clear();
+    const bool was_estopped = arm_.estop();
     controller_.handle(message, replies);
+    if (arm_.estop() && !was_estopped) estop_since_ns_ = monotonic_ns();
     if (!drop_replies_) {
       for (const CanMessage& reply : replies) send(reply);
     }

@@ -83,6 +83,8 @@ class Simulator {
 
   std::map<std::uint32_t, std::uint64_t> frames_received_;  // by id (standard ids)
   std::uint64_t frames_sent_ = 0;
+  // CLOCK_MONOTONIC when the 0x150 frame that put the arm in e-stop was taken off the bus.
+  std::int64_t estop_since_ns_ = 0;
   Summary logged_;
 };
 

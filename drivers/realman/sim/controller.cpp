@@ -120,6 +120,7 @@ nlohmann::json Controller::handle(std::string_view line, ClientId client, std::i
 nlohmann::json Controller::dispatch(const nlohmann::json& message, ClientId client, std::int64_t now_ns) {
   const std::string name = message.at("command").get<std::string>();
   ++command_counts_[name];
+  command_last_ns_[name] = now_ns;
   const auto& table = commands();
   const auto found = table.find(name);
   const bool answered =
@@ -235,6 +236,7 @@ nlohmann::json Controller::state(std::int64_t now_ns) const {
       {"hand", hand_.control_state()},
       {"init_pose_rad", std::vector<double>(init_pose_.begin(), init_pose_.begin() + static_cast<std::ptrdiff_t>(dof))},
       {"commands", command_counts_},
+      {"commands_last_ns", command_last_ns_},
       {"requests", requests_},
       {"malformed", malformed_},
       {"unknown", unknown_},

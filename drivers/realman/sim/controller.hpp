@@ -165,6 +165,7 @@ class Controller {
   std::int64_t advanced_ns_;
 
   std::map<std::string, std::uint64_t, std::less<>> command_counts_;
+  std::map<std::string, std::int64_t, std::less<>> command_last_ns_;  // CLOCK_MONOTONIC, when last read
   std::uint64_t requests_ = 0;
   std::uint64_t malformed_ = 0;
   std::uint64_t unknown_ = 0;

@@ -86,7 +86,9 @@ const std::map<std::uint8_t, Controller::Handler>& Controller::handlers() {
 }
 
 Frame Controller::handle(const Frame& request, ClientId client) {
-  ++command_counts_[register_name(request.reg)];
+  const std::string name = register_name(request.reg);
+  ++command_counts_[name];
+  command_last_ns_[name] = advanced_ns_;  // its arrival (advance() came first)
   if (request.protocol != kProtocolPrivate && request.protocol != kProtocolKeepAlive) {
     if (!options_.quiet) {
       spdlog::info("{}: protocol id {} is not the private protocol (2 or 3)", register_name(request.reg),
@@ -333,6 +335,7 @@ nlohmann::json Controller::state() const {
           {"teach_sensitivity", config_.teach_sensitivity},
           {"saved_conf", saved_config_.has_value()},
           {"commands", command_counts_},
+          {"commands_last_ns", command_last_ns_},
           {"servo", servo_.statistics(model_.dof)}};
 }
 

@@ -173,6 +173,7 @@ class Controller {
   std::int64_t started_ns_;
   std::int64_t advanced_ns_;
   std::map<std::string, std::uint64_t, std::less<>> command_counts_;
+  std::map<std::string, std::int64_t, std::less<>> command_last_ns_;  // CLOCK_MONOTONIC, when last read
 };
 
 }  // namespace robotd::xarm::sim
