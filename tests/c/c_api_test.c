@@ -602,12 +602,17 @@ static bool estop_latches_until_reset(fixture* f) {
   CHECK(wait_for_estop(f->client, false, &status));
   CHECK(status.state == ROBOTD_DEVICE_RUNNING);
 
-  /* NULL = every device. */
-  CHECK_OK(robotd_estop(f->client, NULL, NULL));
+  /* NULL = every device; the report says whether the e-stop reached each. */
+  char* report = NULL;
+  CHECK_OK(robotd_estop_report(f->client, NULL, NULL, &report));
+  const bool reached = strstr(report, "reached 'arm' in ") != NULL;
+  robotd_free_string(report);
+  CHECK(reached);
   CHECK(wait_for_estop(f->client, true, &status));
   CHECK_OK(robotd_reset_estop(f->client, NULL));
   CHECK(wait_for_estop(f->client, false, &status));
   CHECK_CALL(ROBOTD_REFUSED, robotd_estop(f->client, "nope", NULL), "robotd refused /estop");
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_estop_report(f->client, "arm", NULL, NULL), "report is NULL");
   return true;
 }
 

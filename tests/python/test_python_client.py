@@ -180,7 +180,8 @@ class ClientTest(unittest.TestCase):
         self.assertGreaterEqual(len(calls), 3)
 
     def test_estop_latches_until_reset(self):
-        self.client.estop("arm", reason="python test")
+        reply = self.client.estop("arm", reason="python test")
+        self.assertRegex(reply, r"^e-stop engaged by 'python_test'; reached 'arm' in \d+\.\d\d ms$")
         deadline = time.monotonic() + 3
         while self.client.device_status("arm").state != robotd.DeviceState.ESTOP and time.monotonic() < deadline:
             time.sleep(0.02)

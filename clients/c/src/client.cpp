@@ -23,6 +23,18 @@ using robotd::c::timeout_argument;
 using robotd::c::to_c;
 using robotd::c::to_client_options;
 
+namespace {
+
+// A copy of `text` the caller frees with robotd_free_string.
+char* allocated_copy(const std::string& text) {
+  auto* copy = static_cast<char*>(std::malloc(text.size() + 1));
+  if (copy == nullptr) throw std::bad_alloc();
+  std::memcpy(copy, text.c_str(), text.size() + 1);
+  return copy;
+}
+
+}  // namespace
+
 extern "C" {
 
 robotd_status robotd_connect(const robotd_client_options* options, robotd_client** client) {
@@ -65,6 +77,15 @@ robotd_status robotd_estop(robotd_client* client, const char* device, const char
   });
 }
 
+robotd_status robotd_estop_report(robotd_client* client, const char* device, const char* reason, char** report) {
+  return guarded("robotd_estop_report", [&] {
+    auto& handle = client_handle(client);
+    const std::string name = text_argument(device, "device", ROBOTD_NAME_CAPACITY);
+    auto& out = require(report, "report", "a char* to store robotd's answer in");
+    out = allocated_copy(take(handle.client->estop(name, optional_text(reason))).message);
+  });
+}
+
 robotd_status robotd_reset_estop(robotd_client* client, const char* device) {
   return guarded("robotd_reset_estop", [&] {
     auto& handle = client_handle(client);
@@ -81,11 +102,7 @@ robotd_status robotd_device_call(robotd_client* client, const char* device, cons
     const std::string args = args_json == nullptr ? "{}" : args_json;
     const auto timeout = timeout_argument(timeout_ms, "timeout_ms", false);
     auto& out = require(result_json, "result_json", "a char* to store the JSON result in");
-    const std::string result = take(handle.client->device_call(name, operation, args, timeout));
-    auto* copy = static_cast<char*>(std::malloc(result.size() + 1));
-    if (copy == nullptr) throw std::bad_alloc();
-    std::memcpy(copy, result.c_str(), result.size() + 1);
-    out = copy;
+    out = allocated_copy(take(handle.client->device_call(name, operation, args, timeout)));
   });
 }
 

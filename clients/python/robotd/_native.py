@@ -90,6 +90,7 @@ _PROTOTYPES = {
     "robotd_subscribe_device_status": (_Status, [_Handle, DeviceStatusCallback, c_void_p, POINTER(_Handle)]),
     "robotd_unsubscribe": (_Status, [_Handle]),
     "robotd_estop": (_Status, [_Handle, c_char_p, c_char_p]),
+    "robotd_estop_report": (_Status, [_Handle, c_char_p, c_char_p, POINTER(c_void_p)]),
     "robotd_reset_estop": (_Status, [_Handle, c_char_p]),
     # The result is a char* the library allocated: kept as a void pointer, so that it can be freed.
     "robotd_device_call": (_Status, [_Handle, c_char_p, c_char_p, c_char_p, c_int32, POINTER(c_void_p)]),

@@ -291,6 +291,12 @@ ROBOTD_API robotd_status robotd_unsubscribe(robotd_subscription* subscription);
 
 /* Engages (latches) the e-stop of `device` (NULL or "" = every device); reason may be NULL. */
 ROBOTD_API robotd_status robotd_estop(robotd_client* client, const char* device, const char* reason);
+/* robotd_estop that also returns robotd's answer in *report: for each device, whether its loop
+ * wrote the e-stop frame to the device and how soon ("reached 'arm' in 0.42 ms"), or that it
+ * could not ("NOT confirmed on 'arm' (FAULT: simulated link lost …)": robotd keeps sending it
+ * every tick). Allocated by the library: free it with robotd_free_string. */
+ROBOTD_API robotd_status robotd_estop_report(robotd_client* client, const char* device, const char* reason,
+                                             char** report);
 ROBOTD_API robotd_status robotd_reset_estop(robotd_client* client, const char* device);
 
 /* A device operation (a driver op, or robotd's recover / blackbox / loop_timing) with JSON
