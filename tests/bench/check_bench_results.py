@@ -22,6 +22,13 @@ REQUIRED = [
     *(f"flood{n}_{figure}" for n in (0, 1, 8, 32)
       for figure in ("owner_fraction", "forged_counted_fraction", "intake_cpu_us_per_command",
                      "receive_cpu_us_per_command", "robotd_cpu_us_per_command")),
+    *(f"estop_sim_{state}_{figure}" for state in ("running", "streaming", "fault", "recover", "reset_zero",
+                                                  "no_feedback") for figure in ("p50_ms", "p99_ms", "max_ms")),
+    "estop_sim_link_lost_reached_fraction",
+    *(f"estop_{vendor}_running_{figure}" for vendor in ("piper", "parol6", "realman", "xarm", "hightorque")
+      for figure in ("p50_ms", "p99_ms", "max_ms", "wire_p50_ms", "wire_p99_ms", "wire_max_ms")),
+    *(f"estop_{vendor}_recover_reached_fraction" for vendor in ("piper", "parol6", "realman", "xarm", "hightorque")),
+    *(f"estop_{vendor}_reset_zero_p99_ms" for vendor in ("piper", "hightorque")),
 ]
 
 
