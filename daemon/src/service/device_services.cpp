@@ -145,12 +145,13 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
       } else {
         text << "in " << static_cast<double>(std::max<std::int64_t>(at_ns - engaged_ns, 0)) / 1e6 << " ms";
       }
-      reached += (reached.empty() ? "" : ", ") + text.str();
+      reached += reached.empty() ? "" : ", ";
+      reached += text.str();
     } else {
       const device::LoopState state = observers_[targets[t]]->latest();
       const std::string why = state.state == DeviceState::kFault ? "FAULT: " + std::string(state.fault.text.data())
                                                                  : std::string(to_string(state.state));
-      unreached += (unreached.empty() ? "'" : "; '") + name + "' (" + why + ")";
+      unreached.append(unreached.empty() ? "'" : "; '").append(name).append("' (").append(why).append(")");
     }
   }
   std::string message = "e-stop engaged by '" + who + "'";
