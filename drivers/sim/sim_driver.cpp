@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <span>
 #include <string>
 #include <time.h>
 #include <utility>
@@ -87,6 +88,7 @@ Result<void> SimDriver::configure(const nlohmann::json& params) {
 
 Result<void> SimDriver::connect() {
   if (!configured_) return make_error(ErrorCode::kRefused, "connect: the sim driver is not configured");
+  motors_enabled_.store(true);
   link_generation_.fetch_add(1);
   connected_.store(true);
   return {};
@@ -162,6 +164,12 @@ IoResult SimDriver::write(const CommandFrame& command, FaultInfo& fault) noexcep
   const IoResult status = injected_link_status(fault);
   if (status == IoResult::kDisconnected) return status;
   command_ = command;
+  const auto joints = std::span(command.joints).first(std::min(command.joint_count, params_.joints.size()));
+  // A session taking a joint enables the motors, as the PiPER and xArm drivers do by default.
+  if (std::any_of(joints.begin(), joints.end(), [](const JointCommand& joint) { return joint.owned; })) {
+    motors_enabled_.store(true, std::memory_order_relaxed);
+  }
+  if (motors_off_.take() != nullptr) motors_off_.answer(decide_motors_off(command));
   if (command.newest_command_sent_ns != 0) {
     // How long the newest client command took from its publish to this write().
     const std::int64_t latency_ns = monotonic_now_ns() - command.newest_command_sent_ns;
@@ -172,6 +180,18 @@ IoResult SimDriver::write(const CommandFrame& command, FaultInfo& fault) noexcep
     latency_count_.store(count + 1, std::memory_order_release);
   }
   return status;
+}
+
+MotorsOffOutcome SimDriver::decide_motors_off(const CommandFrame& command) noexcept {
+  using Verdict = MotorsOffOutcome::Verdict;
+  if (command.estop) return {.verdict = Verdict::kEstop};
+  for (std::size_t j = 0; j < std::min(command.joint_count, params_.joints.size()); ++j) {
+    const JointCommand& joint = command.joints[j];
+    if (joint.owned) return {.verdict = Verdict::kOwned, .joint = j};
+    if (joint.holds()) return {.verdict = Verdict::kHeld, .joint = j};
+  }
+  motors_enabled_.store(false, std::memory_order_relaxed);
+  return {.verdict = Verdict::kDisabled};
 }
 
 bool SimDriver::refresh_link_state(FaultInfo& fault) noexcept {
@@ -207,14 +227,16 @@ void SimDriver::advance_physics(std::int64_t now_ns) noexcept {
   rt_clock_started_ = true;
   rt_last_step_ns_ = now_ns;
 
+  const bool powered = motors_enabled_.load(std::memory_order_relaxed);
   const bool damp_all = command_.estop || rt_injected_faults_.halts_motors();
   const std::size_t joint_count = params_.joints.size();
   for (std::size_t i = 0; i < joint_count; ++i) {
     const SimJointParams& joint = params_.joints[i];
     const double zero_offset_rad = zero_offset_rad_[i].load(std::memory_order_relaxed);
     const JointCommand command = i < command_.joint_count ? command_.joints[i] : JointCommand{};
-    const MotorLaw law =
-        damp_all ? MotorLaw{.kd = joint.default_kd} : commanded_motor_law(joint, command, zero_offset_rad);
+    MotorLaw law;  // disabled motors apply no torque
+    if (powered)
+      law = damp_all ? MotorLaw{.kd = joint.default_kd} : commanded_motor_law(joint, command, zero_offset_rad);
     const JointPhysics physics{.inertia_kg_m2 = joint.inertia_kg_m2,
                                .damping_nm_s_rad = joint.damping_nm_s_rad,
                                .position_min_rad = joint.limits.position_min_rad + zero_offset_rad,

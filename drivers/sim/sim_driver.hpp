@@ -10,6 +10,12 @@
 // the last command frame is set, while a fault is injected and while the link is lost, as a
 // motor controller's fault or command timeout would. After recover() no earlier command is
 // resumed: the joints are unpowered until the next write().
+//
+// The motors can be disabled (op "motors", as a vendor's disable op): they then apply no torque
+// at all, the e-stop's damping included. write() decides a disable at the tick it acts on, from
+// that tick's commands: never while robotd drives a joint (a session, or the KEEP or DAMPING a
+// session left behind) or under the e-stop. A session taking a joint enables them again, as the
+// PiPER and xArm drivers do by default.
 #pragma once
 
 #include <array>
@@ -27,6 +33,7 @@
 #include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "robotd/driver/rt_handoff.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "sim_params.hpp"
 
@@ -64,6 +71,14 @@ struct InjectedFaults {
   bool halts_motors() const noexcept { return link_lost || fault.code != 0; }
 };
 
+/// What write() decided about a request to disable the motors.
+struct MotorsOffOutcome {
+  enum class Verdict : std::uint8_t { kDisabled, kEstop, kOwned, kHeld };
+  Verdict verdict = Verdict::kDisabled;
+  std::size_t joint = 0;  // kOwned, kHeld: the first joint in the way
+};
+struct MotorsOffRequest {};
+
 class SimDriver final : public driver::Driver {
  public:
   Result<void> configure(const nlohmann::json& params) override;
@@ -96,6 +111,8 @@ class SimDriver final : public driver::Driver {
   /// kOk, or the injected link loss or fault that halts the motors.
   driver::IoResult injected_link_status(driver::FaultInfo& fault) const noexcept;
   void advance_physics(std::int64_t now_ns) noexcept;
+  /// Disables the motors unless robotd drives a joint or the e-stop is on.
+  MotorsOffOutcome decide_motors_off(const driver::CommandFrame& command) noexcept;
   void fill_feedback(driver::Feedback& out) const noexcept;
 
   // Non-RT side (sim_driver_ops.cpp).
@@ -108,6 +125,10 @@ class SimDriver final : public driver::Driver {
   Result<nlohmann::json> slow_maintenance(const nlohmann::json& args);
   /// The wait slow_maintenance asked of this recover() or reset_zero(); false when aborted.
   bool wait_as_asked();
+  Result<nlohmann::json> motors(const nlohmann::json& args);
+  /// Hands a disable to write() until it is decided otherwise than "a session owns a joint": the
+  /// session robotd released before this op may not have ended in the loop yet.
+  Result<MotorsOffOutcome> disable_motors();
   Result<nlohmann::json> set_imu(const nlohmann::json& args);
   Result<nlohmann::json> command_latency(const nlohmann::json& args);
   Result<nlohmann::json> state(const nlohmann::json& args) const;
@@ -126,7 +147,10 @@ class SimDriver final : public driver::Driver {
   std::array<std::atomic<double>, driver::kMaxJoints> external_torque_nm_{};
   std::array<std::atomic<double>, driver::kMaxJoints> zero_offset_rad_{};
   std::atomic<std::int64_t> stall_ns_{0};             // the next read() blocks this long (a hung bus)
-  std::atomic<std::int64_t> maintenance_wait_ns_{0};  // the next recover() or reset_zero() waits this long
+  std::atomic<std::int64_t> maintenance_wait_ns_{0};  // the next recover(), reset_zero() or motors op waits this long
+  std::atomic<bool> motors_enabled_{true};
+  std::atomic<bool> motors_op_waiting_{false};  // a motors op waits as slow_maintenance asked
+  driver::RtHandoff<MotorsOffRequest, MotorsOffOutcome> motors_off_;
   driver::AbortFlag abort_;
   std::atomic<bool> estop_input_{false};         // the simulated controller's e-stop button
   std::atomic<std::uint64_t> recover_calls_{0};  // how often robotd (or a person) tried recover()

@@ -1,6 +1,7 @@
 // SimDriver's non-RT side: describe(), diagnostics() and the call() ops.
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <ctime>
 #include <exception>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "robotd/driver/monotonic_clock.hpp"
@@ -19,12 +21,24 @@ namespace {
 
 using driver::JointCommandKind;
 
+using namespace std::chrono_literals;
+
 struct OpSpec {
   std::string_view name;
   std::string_view help;
+  bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 10> kOps{{
+/// How long a disable may wait for write() to decide it.
+constexpr auto kDecisionTimeout = 500ms;
+
+constexpr std::array<OpSpec, 11> kOps{{
+    {"motors",
+     R"({"enabled": bool}: enable or disable the simulated motors, as a vendor's enable/disable op does. Disabled )"
+     R"(motors apply no torque, not even the e-stop's damping: the joints coast under their load. Disabling is )"
+     R"(refused while robotd drives a joint (a session, or the KEEP or DAMPING one left) and under the e-stop; a )"
+     R"(session taking a joint enables them again)",
+     driver::kNeedsFreeMotors},
     {"stop_feedback", R"({"enabled": bool}: while enabled, read() reports no new data; the simulation keeps running)"},
     {"estop_input", R"({"pressed": bool}: press or release the simulated controller's own e-stop button)"},
     {"disconnect",
@@ -40,13 +54,14 @@ constexpr std::array<OpSpec, 10> kOps{{
      R"("linear_acceleration_m_s2": [x, y, z]}, each optional: what the simulated IMU reports from now on)"},
     {"stall", R"({"ms": 1..10000}: the next read() blocks this long, like a driver hung on its bus (fault injection))"},
     {"slow_maintenance",
-     R"({"ms": 1..60000}: the next recover() or reset_zero() waits this long first, like a controller slow to )"
-     R"(answer; abort_maintenance() (an e-stop, a shutdown) ends the wait with an error)"},
+     R"({"ms": 1..60000}: the next recover(), reset_zero() or motors op waits this long first, like a controller )"
+     R"(slow to answer; abort_maintenance() (an e-stop, a shutdown) ends the wait of a recover() or reset_zero() )"
+     R"(with an error)"},
     {"command_latency",
      R"({"reset": bool, "samples": bool}: time from a client's publish (ControlCommand.sent_steady_ns) to the )"
      R"(write() that carried it: count and p50/p99/p99.9/max in µs, every sample in ns with samples=true)"},
     {"state", R"({}: per joint position (rad), velocity (rad/s), applied torque (N·m), command kind, applied kp, kd; )"
-              R"(e-stop, link, feedback, recover() calls and injected fault)"},
+              R"(motors enabled or not, e-stop, link, feedback, recover() calls and injected fault)"},
 }};
 
 std::string_view help_of(std::string_view op) {
@@ -122,7 +137,9 @@ driver::DeviceDescription SimDriver::describe() const {
   description.supports_damping = true;
   description.supports_zero_torque = true;
   description.has_imu = params_.imu;
-  for (const OpSpec& op : kOps) description.ops.push_back({std::string(op.name), std::string(op.help)});
+  for (const OpSpec& op : kOps) {
+    description.ops.push_back({std::string(op.name), std::string(op.help), op.needs_free_motors});
+  }
   return description;
 }
 
@@ -132,7 +149,8 @@ driver::Diagnostics SimDriver::diagnostics() const {
   const bool connected = connected_.load();
   return {
       {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
-      {"motors", connected ? "enabled" : "disabled"},
+      {"motors", std::string(connected && motors_enabled_.load() ? "enabled" : "disabled") +
+                     (motors_op_waiting_.load() ? "; switching (a motors op waits as slow_maintenance asked)" : "")},
       {"estop", snapshot.estop ? "engaged" : "clear"},
       {"injected_fault", fault_text(injected.fault)},
       {"modes", command_kind_counts(snapshot)},
@@ -144,6 +162,7 @@ Result<nlohmann::json> SimDriver::call(const std::string& op, const nlohmann::js
   if (!configured_) return make_error(ErrorCode::kRefused, op + ": the sim driver is not configured");
   try {
     const nlohmann::json& arguments = args.is_null() ? no_arguments() : args;
+    if (op == "motors") return motors(arguments);
     if (op == "stop_feedback") return stop_feedback(arguments);
     if (op == "estop_input") return press_estop_input(arguments);
     if (op == "disconnect") return inject_disconnect(arguments);
@@ -248,6 +267,72 @@ Result<nlohmann::json> SimDriver::slow_maintenance(const nlohmann::json& args) {
   if (!errors.empty()) return invalid_arguments("slow_maintenance", errors);
   maintenance_wait_ns_.store(*ms * 1'000'000, std::memory_order_release);
   return nlohmann::json{{"maintenance_wait_ms", *ms}};
+}
+
+Result<nlohmann::json> SimDriver::motors(const nlohmann::json& args) {
+  using Verdict = MotorsOffOutcome::Verdict;
+  std::vector<std::string> errors;
+  JsonReader reader(args, "args", errors);
+  reader.require("enabled", "true or false");
+  const bool enabled = reader.boolean_or("enabled", true);
+  reader.finish();
+  if (!errors.empty()) return invalid_arguments("motors", errors);
+  if (!connected_.load())
+    return make_error(ErrorCode::kNotAvailable, "motors: the simulated controller is not connected");
+  // A controller slow to answer (slow_maintenance). This is no maintenance: nothing ends the wait early.
+  if (const std::int64_t wait_ns = maintenance_wait_ns_.exchange(0); wait_ns > 0) {
+    motors_op_waiting_.store(true);
+    std::this_thread::sleep_for(std::chrono::nanoseconds(wait_ns));
+    motors_op_waiting_.store(false);
+  }
+  if (enabled) {
+    motors_enabled_.store(true);
+    return nlohmann::json{{"motors", "enabled"}};
+  }
+  const Result<MotorsOffOutcome> decided = disable_motors();
+  if (!decided) return decided.error();
+  const std::string joint = params_.joints[decided.value().joint].name;
+  switch (decided.value().verdict) {
+    case Verdict::kDisabled:
+      break;
+    case Verdict::kEstop:
+      return make_error(
+          ErrorCode::kRefused,
+          "motors: robotd's e-stop damps every joint, and disabled motors let go; reset the e-stop first");
+    case Verdict::kOwned:
+      return make_error(ErrorCode::kRefused, "motors: joint '" + joint + "' is held by a session; release it first");
+    case Verdict::kHeld:
+      return make_error(ErrorCode::kRefused,
+                        "motors: robotd still holds joint '" + joint +
+                            "' (the KEEP or DAMPING a session left it in), and disabled motors let go; take it with a "
+                            "session and release it with ZERO_TORQUE first");
+  }
+  return nlohmann::json{{"motors", "disabled"}};
+}
+
+Result<MotorsOffOutcome> SimDriver::disable_motors() {
+  const auto deadline = std::chrono::steady_clock::now() + kDecisionTimeout;
+  std::optional<MotorsOffOutcome> owned;  // the last "a session owns a joint", while retrying
+  for (;;) {
+    if (!motors_off_.offer(MotorsOffRequest{})) {
+      return make_error(ErrorCode::kRefused, "motors: another disable is being decided; try again");
+    }
+    const auto outcome = motors_off_.await(std::max<std::chrono::nanoseconds>(
+        deadline - std::chrono::steady_clock::now(), std::chrono::nanoseconds::zero()));
+    if (!outcome && owned) return *owned;  // time ran out while the session still owned the joint
+    if (!outcome) {
+      return make_error(ErrorCode::kNotAvailable,
+                        "motors: the control loop did not take the request within " +
+                            std::to_string(kDecisionTimeout.count()) +
+                            " ms (robotd pauses it during recover and reset_zero; a lost link or an injected fault "
+                            "silences the controller); nothing was changed");
+    }
+    if (outcome->verdict != MotorsOffOutcome::Verdict::kOwned || std::chrono::steady_clock::now() >= deadline) {
+      return *outcome;
+    }
+    owned = outcome;
+    std::this_thread::sleep_for(1ms);
+  }
 }
 
 Result<nlohmann::json> SimDriver::set_imu(const nlohmann::json& args) {
@@ -377,6 +462,7 @@ Result<nlohmann::json> SimDriver::state(const nlohmann::json& args) const {
   nlohmann::json fault = nullptr;
   if (injected.fault.code != 0) fault = {{"code", injected.fault.code}, {"text", injected.fault.text.data()}};
   return nlohmann::json{{"joints", std::move(joints)},
+                        {"motors", motors_enabled_.load() ? "enabled" : "disabled"},
                         {"estop", snapshot.estop},
                         {"link", connected && !injected.link_lost ? "connected" : "disconnected"},
                         {"feedback", injected.feedback_stopped ? "stopped" : "streaming"},

@@ -111,7 +111,11 @@ TEST(JointLimiter, StoppingSpeedIsTheSpeedWhoseDiscreteBrakeCoversTheDistanceExa
     const double speed = stopping_speed(distance, l, kDt);
     // This period at `speed`, then a·dt less every period until rest.
     double covered = 0;
-    for (double v = speed; v > 0; v -= 5.0 * kDt) covered += v * kDt;
+    double v = speed;
+    while (v > 0) {
+      covered += v * kDt;
+      v -= 5.0 * kDt;
+    }
     EXPECT_NEAR(covered, distance, 1e-12) << distance;
   }
   EXPECT_EQ(stopping_speed(0.0, l, kDt), 0.0);

@@ -80,7 +80,7 @@ TEST(LoopStatisticsWindow, WrappedWindowKeepsOnlyTheNewestTicks) {
 
 TEST(LoopStatisticsWindow, SummaryReportsEachInputInItsOwnFields) {
   LoopStatisticsWindow window(100);
-  for (std::int32_t i = 1; i <= 100; ++i) {
+  for (std::int64_t i = 1; i <= 100; ++i) {
     // period 1001..1100 µs, wake latency 1..100 µs, execution 0.5..50 µs
     window.add(timing((1000 + i) * 1000, i * 1000, i * 500));
   }

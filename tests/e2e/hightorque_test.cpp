@@ -190,6 +190,7 @@ TEST_F(HighTorqueTest, TimeoutFallbacksDoWhatTheirNamesSayOnTheMotors) {
   EXPECT_EQ(device_status("hightorque").state, DeviceState::kRunning);
 }
 
+// reset_zero and set_motor_timeout (an op that needs free motors) wait for a free device.
 TEST_F(HighTorqueTest, ResetZeroIsRefusedDuringASessionAndZeroesTheMotorsWithout) {
   start();
   {
@@ -198,8 +199,16 @@ TEST_F(HighTorqueTest, ResetZeroIsRefusedDuringASessionAndZeroesTheMotorsWithout
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().message.find("refused while a session is active"), std::string::npos)
         << refused.error().message;
+    const auto watchdog = client().device_call("hightorque", "set_motor_timeout", R"({"timeout_ms": 200})");
+    ASSERT_FALSE(watchdog) << "the motors' watchdog was changed under a session";
+    EXPECT_NE(watchdog.error().message.find("set_motor_timeout is refused while a session is active on 'hightorque'"),
+              std::string::npos)
+        << watchdog.error().message;
+    EXPECT_NE(watchdog.error().message.find("(session " + session.session_id() + ","), std::string::npos)
+        << watchdog.error().message;
     ASSERT_TRUE(session.release(Behavior::kZeroTorque));
   }
+  EXPECT_EQ(call_device("hightorque", "set_motor_timeout", {{"timeout_ms", 200}})["timeout_ms"], 200);
   for (const std::size_t m : {0U, 7U, 22U}) {
     ASSERT_TRUE(sim_control({{"op", "set_position"}, {"position_rad", 0.4}}, m)["ok"].get<bool>());
   }

@@ -59,7 +59,15 @@ TEST_F(Parol6Test, SessionMovesTheArmAndBoardOpsAnswer) {
   const nlohmann::json state = call("state");
   EXPECT_TRUE(state["all_homed"].get<bool>()) << state.dump();
   EXPECT_EQ(state["command_in_force"], "go to position") << state.dump();
+  // An op that acts on the joints waits for them to be free; a query does not.
+  const auto refused = client().device_call("parol6", "home", "{}");
+  ASSERT_FALSE(refused) << "homing while a session streams";
+  EXPECT_NE(refused.error().message.find("home is refused while a session is active on 'parol6'"), std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("(session " + session.session_id() + ","), std::string::npos)
+      << refused.error().message;
   ASSERT_TRUE(session.release(Behavior::kKeep));
+  EXPECT_EQ(call("enable")["sent"], "enable");
   const DeviceStatus status = device_status("parol6");
   EXPECT_EQ(status.state, DeviceState::kRunning) << status.fault_text;
   if (kCountsAllocations) {

@@ -85,9 +85,13 @@ TEST_F(PiperTest, SessionMovesTheArmAndVendorOpsAnswer) {
   EXPECT_EQ(arm["ctrl_mode"], "can command") << arm.dump();
   const auto refused = client().device_call("piper", "end_pose", call("fk")["flange"].dump());
   ASSERT_FALSE(refused) << "a move op while a session streams";
-  EXPECT_NE(refused.error().message.find("session"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("end_pose is refused while a session is active on 'piper'"), std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("(session " + session.session_id() + ","), std::string::npos)
+      << refused.error().message;
 
   ASSERT_TRUE(session.release(Behavior::kKeep));
+  EXPECT_EQ(call("enable", {{"joint", "all"}})["enabled"], nlohmann::json::array({true, true, true, true, true, true}));
   const DeviceStatus status = device_status("piper");
   EXPECT_EQ(status.state, DeviceState::kRunning) << status.fault_text;
   if (kCountsAllocations) {

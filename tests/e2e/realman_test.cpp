@@ -64,7 +64,10 @@ TEST_F(RealmanTest, SessionMovesTheArmAndVendorOpsAnswer) {
   EXPECT_TRUE(gripper["online"].get<bool>()) << gripper.dump();
   const auto refused = client().device_call("realman", "movej", R"({"joints_rad": [0, 0, 0, 0, 0, 0]})");
   ASSERT_FALSE(refused) << "a planned move while a session streams";
-  EXPECT_NE(refused.error().message.find("a session is streaming"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("movej is refused while a session is active on 'realman'"), std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("(session " + session.session_id() + ","), std::string::npos)
+      << refused.error().message;
   ASSERT_TRUE(session.release(Behavior::kKeep));
   std::this_thread::sleep_for(20ms);  // the loop applies the release on its next ticks
   const nlohmann::json moved = call("movej", {{"joints_rad", {0.1, 0.1, 0.1, 0.1, 0.1, 0.1}}, {"v", 80}});

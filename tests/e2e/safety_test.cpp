@@ -1,8 +1,11 @@
 // End to end through a real robotd process: what must never reach a motor (issue tests 4, 5),
-// device faults and recovery, the black box.
+// device faults and recovery, the black box, ops that act on the joints.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -281,6 +284,73 @@ TEST_F(SafetyTest, ClampPolicyClampsInsteadOfRejecting) {
   EXPECT_EQ(counters.accepted, 1U);
   EXPECT_EQ(counters.clamped, 1U);
   EXPECT_TRUE(wait_for_joints([](const JointState& s) { return std::fabs(s.position[0] - 2.5) < 0.02; }, 5s));
+}
+
+// Defect 8: an op that acts on the joints (the sim's motors op, as a vendor's disable) is refused
+// while a session holds a motor of the device, naming the holder by its public id; the driver then
+// refuses to let go of a joint robotd still holds in the session's fallback; and no session is
+// granted while such an op runs.
+TEST_F(SafetyTest, AnOpThatActsOnTheJointsWaitsForFreeMotorsAndNoSessionStartsWhileItRuns) {
+  start_robotd();
+  const auto devices = client().list_devices();
+  ASSERT_TRUE(devices) << devices.error().message;
+  ASSERT_EQ(devices.value().size(), 1U);
+  const auto line_of = [&](const std::string& op) {
+    const auto& ops = devices.value()[0].ops;
+    const auto line =
+        std::find_if(ops.begin(), ops.end(), [&](const std::string& l) { return l.starts_with(op + ":"); });
+    return line == ops.end() ? std::string("(no " + op + ")") : *line;
+  };
+  EXPECT_TRUE(line_of("motors").ends_with(" [needs free motors]")) << line_of("motors");
+  EXPECT_EQ(line_of("state").find("[needs free motors]"), std::string::npos) << line_of("state");
+  const std::string off = R"({"enabled": false})";
+
+  Session session = acquire({2});
+  const auto refused = client().device_call("arm", "motors", off);
+  ASSERT_FALSE(refused) << "the motors were disabled under a session";
+  EXPECT_NE(refused.error().message.find("motors is refused while a session is active on 'arm'"), std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("(session " + session.session_id() + ","), std::string::npos)
+      << refused.error().message;
+  EXPECT_EQ(refused.error().message.find(session.uuid()), std::string::npos) << "the refusal gave the uuid away";
+  EXPECT_EQ(sim_state()["motors"], "enabled");
+
+  // Released with KEEP, the joint is still robotd's to hold: the driver will not let it go.
+  ASSERT_TRUE(session.release(Behavior::kKeep));
+  const auto held = client().device_call("arm", "motors", off);
+  ASSERT_FALSE(held) << "the motors were disabled under robotd's KEEP";
+  EXPECT_NE(held.error().message.find("robotd still holds joint 'joint3'"), std::string::npos) << held.error().message;
+  // Let go by its owner (ZERO_TORQUE), the device is free and the op runs.
+  Session owner = acquire({2});
+  ASSERT_TRUE(owner.release(Behavior::kZeroTorque));
+  const auto disabled = client().device_call("arm", "motors", off);
+  ASSERT_TRUE(disabled) << disabled.error().message;
+  EXPECT_EQ(sim_state()["motors"], "disabled");
+
+  // A slow op (the controller answers in 1.5 s) holds the device: no session meanwhile.
+  call_device("arm", "slow_maintenance", {{"ms", 1500}});
+  Client maintainer = make_client("maintainer");
+  auto enabling =
+      std::async(std::launch::async, [&] { return maintainer.device_call("arm", "motors", R"({"enabled": true})"); });
+  bool switching = false;
+  for (int i = 0; i < 40 && !switching; ++i) {
+    for (const KeyValue& value : device_status().driver_values) {
+      switching = switching || (value.key == "motors" && value.value.find("switching") != std::string::npos);
+    }
+  }
+  SessionRequest request;
+  request.device = "arm";
+  request.motor_ids = {0};
+  const auto during = client().request_control(request);
+  const auto enabled = enabling.get();
+  ASSERT_TRUE(switching) << "the motors op never showed as running";
+  ASSERT_FALSE(during) << "a session was granted while the motors op ran";
+  EXPECT_NE(during.error().message.find("device 'arm' is in maintenance (motors)"), std::string::npos)
+      << during.error().message;
+  ASSERT_TRUE(enabled) << enabled.error().message;
+  EXPECT_EQ(sim_state()["motors"], "enabled");
+  const auto after = client().request_control(request);
+  EXPECT_TRUE(after) << "no session once the op was done: " << after.error().message;
 }
 
 }  // namespace

@@ -118,7 +118,7 @@ void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::strin
   const auto uuid_line = streamer.read_line(10s);
   ASSERT_TRUE(uuid_line.has_value());
   ASSERT_EQ(uuid_line->rfind("uuid ", 0), 0U) << *uuid_line;
-  const std::string uuid = uuid_line->substr(5);
+  const std::string session = uuid_line->substr(uuid_line->find(" session ") + 9);
   std::this_thread::sleep_for(300ms);  // streaming at 1 kHz
 
   const auto killed_at = std::chrono::steady_clock::now();
@@ -131,7 +131,7 @@ void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::strin
     ended_at = std::chrono::steady_clock::now();
     if (!ended) std::this_thread::sleep_for(1ms);
   }
-  ASSERT_TRUE(ended) << "session " << uuid << " did not end after its client died";
+  ASSERT_TRUE(ended) << "session " << session << " did not end after its client died";
   const double elapsed_ms = std::chrono::duration<double, std::milli>(ended_at - killed_at).count();
   std::printf("[ measured ] %s fallback: session ended %.1f ms after SIGKILL (timeout_ms %d)\n", behavior_name.c_str(),
               elapsed_ms, kTimeoutMs);

@@ -68,7 +68,11 @@ TEST_F(XarmTest, SessionMovesTheArmInServoModeAndVendorOpsAnswer) {
   EXPECT_GT(tcp["z_m"].get<double>(), 0.05) << tcp.dump();
   const auto refused = client().device_call("xarm", "move_gohome", "{}");
   ASSERT_FALSE(refused) << "a planned move while a session streams";
-  EXPECT_NE(refused.error().message.find("a session is streaming"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("move_gohome is refused while a session is active on 'xarm'"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("(session " + session.session_id() + ","), std::string::npos)
+      << refused.error().message;
   ASSERT_TRUE(session.release(Behavior::kKeep));
   ASSERT_TRUE(wait_for_joints([&](const JointState& /*s*/) { return sim_state()["mode"].get<int>() == 0; }, 5s, "xarm"))
       << "servo mode was not left: " << sim_state().dump();

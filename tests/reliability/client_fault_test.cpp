@@ -118,7 +118,7 @@ TEST_F(ClientFaultTest, AFloodOfForeignCommandsLeavesTheLoopAndTheOwnerAlone) {
                          std::to_string(kOwnerOffsetRad)});
   const auto uuid_line = owner->read_line(10s);
   ASSERT_TRUE(uuid_line && uuid_line->rfind("uuid ", 0) == 0) << uuid_line.value_or("(nothing)");
-  const std::string owner_uuid = uuid_line->substr(5);
+  const std::string owner_session = uuid_line->substr(uuid_line->find(" session ") + 9);
   constexpr int kIntruders = 8;
   std::vector<std::unique_ptr<ChildProcess>> intruders;
   intruders.reserve(kIntruders);
@@ -138,7 +138,7 @@ TEST_F(ClientFaultTest, AFloodOfForeignCommandsLeavesTheLoopAndTheOwnerAlone) {
   }
   const auto sessions = client().session_status(1s);
   ASSERT_TRUE(sessions) << sessions.error().message;
-  EXPECT_EQ(sessions.value().active_uuids, std::vector<std::string>{owner_uuid}) << "the owner lost its session";
+  EXPECT_EQ(sessions.value().active_uuids, std::vector<std::string>{owner_session}) << "the owner lost its session";
   const JointState during = joint_state();
   for (std::size_t j = 0; j < start.size(); ++j) {
     EXPECT_NEAR(during.position[j], start[j] + kOwnerOffsetRad, kToleranceRad) << "joint " << j << " (owner's target)";

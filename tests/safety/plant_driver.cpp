@@ -60,6 +60,7 @@ Result<void> PlantDriver::recover() {
 
 Result<void> PlantDriver::reset_zero(std::span<const int> joints) {
   if (!wait_for_maintenance()) return make_error(ErrorCode::kRefused, "aborted or failed");
+  const std::lock_guard lock(mutex_);  // the test thread keeps advancing the plant meanwhile
   for (const int joint : joints) {
     if (joint >= 0 && static_cast<std::size_t>(joint) < joint_count_)
       joints_[static_cast<std::size_t>(joint)] = Joint{};
@@ -122,10 +123,8 @@ driver::IoResult PlantDriver::write(const driver::CommandFrame& command, driver:
 }
 
 void PlantDriver::advance(double dt_s) noexcept {
-  {
-    const std::lock_guard lock(mutex_);
-    ++ticks_;
-  }
+  const std::lock_guard lock(mutex_);
+  ++ticks_;
   ticked_.notify_all();
   for (std::size_t j = 0; j < joint_count_; ++j) {
     Joint& joint = joints_[j];

@@ -80,7 +80,7 @@ class PlantDriver final : public driver::Driver {
   };
   DeviceSpec spec_;
   std::size_t joint_count_;
-  std::mutex mutex_;  // the ticks counted, for a maintenance thread waiting them out
+  std::mutex mutex_;  // the ticks counted and the joints, shared with a maintenance thread
   std::condition_variable ticked_;
   std::uint64_t ticks_ = 0;
   std::uint64_t until_ = 0;  // the tick a waiting maintenance ends at

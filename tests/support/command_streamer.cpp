@@ -1,5 +1,6 @@
 // A client in its own process for tests that kill a client: acquires a session, prints
-// "uuid <uuid>", then streams position commands holding the arm at its current position (plus
+// "uuid <uuid> session <public session id>", then streams position commands holding the arm at its current position
+// (plus
 // --offset) at --rate Hz until it is killed (or for --seconds, then prints "sent <n>"). With --uuid it requests nothing
 // and streams
 // --position to every motor in the name of that session instead, as a client that learned another's uuid would: it
@@ -71,7 +72,7 @@ int hold_a_session(robotd::Client& client, const std::string& device, const std:
   for (const auto id : session.value().motor_ids()) {
     hold.push_back(static_cast<float>(state.value().position[static_cast<std::size_t>(id)]) + offset_rad);
   }
-  std::printf("uuid %s\n", session.value().uuid().c_str());
+  std::printf("uuid %s session %s\n", session.value().uuid().c_str(), session.value().session_id().c_str());
   std::fflush(stdout);
   return stream(period, seconds, [&] { return static_cast<bool>(session.value().send_positions(hold)); });
 }

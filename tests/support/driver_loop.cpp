@@ -98,4 +98,12 @@ std::string diagnostic(const driver::Driver& driver, const std::string& key) {
   return "(no " + key + ")";
 }
 
+std::vector<std::string> ops_needing_free_motors(const driver::DeviceDescription& description) {
+  std::vector<std::string> names;
+  for (const driver::OpDescription& op : description.ops) {
+    if (op.needs_free_motors) names.push_back(op.name);
+  }
+  return names;
+}
+
 }  // namespace robotd::testing

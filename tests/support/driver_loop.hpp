@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "robotd/driver/driver.hpp"
 
@@ -74,5 +75,7 @@ driver::CommandFrame position_frame(std::span<const double> q, bool owned = true
 bool joints_near(const driver::Feedback& feedback, std::span<const double> q, double tolerance);
 /// The value of `key` in the driver's diagnostics, or "(no <key>)".
 std::string diagnostic(const driver::Driver& driver, const std::string& key);
+/// The names of the ops that set needs_free_motors, in the driver's order.
+std::vector<std::string> ops_needing_free_motors(const driver::DeviceDescription& description);
 
 }  // namespace robotd::testing

@@ -34,7 +34,8 @@ Verb add_call_verb(CLI::App& app) {
       ->capture_default_str();
   command->footer(
       "Driver ops cover what joint commands do not: grippers, queries, configuration. 'robotctl devices --json' "
-      "lists each device's ops and their arguments. A refusal prints robotd's reason and exits 1.\n\n"
+      "lists each device's ops and their arguments; one marked [needs free motors] acts on the joints, and robotd "
+      "refuses it while a session holds a motor of the device. A refusal prints robotd's reason and exits 1.\n\n"
       "Example:\n  robotctl call arm state\n  robotctl call arm blackbox '{\"fresh\": true}'\n  robotctl call arm "
       "recover");
   return Verb{command, false, [options](VerbContext& context) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -19,6 +20,9 @@ constexpr double kZeroTolerance_rad = 0.1;  // PI Plus: zeroing succeeded when e
 // How long /estop waits for each device's loop to confirm it wrote the e-stop frame: a few
 // ticks, and the time an e-stop takes to pre-empt maintenance.
 constexpr auto kEstopConfirmation = std::chrono::milliseconds(50);
+
+// Ends an op's line in DeviceInfo.ops when robotd refuses the op while a session holds a motor.
+constexpr std::string_view kNeedsFreeMotorsMark = " [needs free motors]";
 
 DeviceCallResponse call_failed(std::string message) { return DeviceCallResponse{false, std::move(message), ""}; }
 
@@ -47,12 +51,14 @@ DeviceServices::DeviceServices(std::vector<device::Device*> devices, std::vector
 }
 
 std::vector<std::string> DeviceServices::daemon_ops() {
-  return {"recover: clear a latched fault (calls the driver's recover); joints then hold where they are. Args: {}",
-          "blackbox: the recent ticks (state, command, timing) kept by the loop. Args: {\"fresh\": bool} — "
-          "false (default) returns the capture made at the last fault, true captures now",
-          "loop_timing: wake latency, execution time and period over the statistics window (p50, p99, p99.9, max "
-          "in µs), ticks, overruns, /joint_states published. Args: {\"samples\": bool (every sample in ns), "
-          "\"reset\": bool (empty the window after reading)}"};
+  return {
+      "recover: clear a latched fault (calls the driver's recover); joints then hold where they are. On a RUNNING "
+      "device it is refused while a session holds a motor. Args: {}",
+      "blackbox: the recent ticks (state, command, timing) kept by the loop. Args: {\"fresh\": bool} — "
+      "false (default) returns the capture made at the last fault, true captures now",
+      "loop_timing: wake latency, execution time and period over the statistics window (p50, p99, p99.9, max "
+      "in µs), ticks, overruns, /joint_states published. Args: {\"samples\": bool (every sample in ns), "
+      "\"reset\": bool (empty the window after reading)}"};
 }
 
 ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*request*/) const {
@@ -78,7 +84,9 @@ ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*req
     for (const Behavior behavior : {Behavior::kKeep, Behavior::kDamping, Behavior::kZeroTorque}) {
       info.behavior_map.push_back(static_cast<std::int32_t>(control::applied_behavior(behavior, model.behaviors)));
     }
-    for (const auto& op : model.ops) info.ops.push_back(op.name + ": " + op.help);
+    for (const auto& op : model.ops) {
+      info.ops.push_back(op.name + ": " + op.help + (op.needs_free_motors ? std::string(kNeedsFreeMotorsMark) : ""));
+    }
     for (const auto& op : daemon_ops()) info.ops.push_back(op);
     info.state = device->channel().device_state.load(std::memory_order_acquire);
     response.devices.push_back(std::move(info));
@@ -145,12 +153,13 @@ EstopResponse DeviceServices::estop(const EstopRequest& request) {
       } else {
         text << "in " << static_cast<double>(std::max<std::int64_t>(at_ns - engaged_ns, 0)) / 1e6 << " ms";
       }
-      reached += (reached.empty() ? "" : ", ") + text.str();
+      reached += reached.empty() ? "" : ", ";
+      reached += text.str();
     } else {
       const device::LoopState state = observers_[targets[t]]->latest();
       const std::string why = state.state == DeviceState::kFault ? "FAULT: " + std::string(state.fault.text.data())
                                                                  : std::string(to_string(state.state));
-      unreached += (unreached.empty() ? "'" : "; '") + name + "' (" + why + ")";
+      unreached.append(unreached.empty() ? "'" : "; '").append(name).append("' (").append(why).append(")");
     }
   }
   std::string message = "e-stop engaged by '" + who + "'";

@@ -17,21 +17,6 @@ constexpr Query kTickQuery = Query::kStateTemperature;
 constexpr std::uint64_t kPublishEveryTicks = 10;
 constexpr std::size_t kRequestsPerTick = 4;
 
-/// Whether robotd holds `joint` this tick: a position target, or any stiffness, damping or torque
-/// (a session's command, or the KEEP or DAMPING it left behind). Zero torque and never-commanded
-/// joints are free.
-bool holds(const driver::JointCommand& joint) noexcept {
-  switch (joint.kind) {
-    case driver::JointCommandKind::kNone:
-      return false;
-    case driver::JointCommandKind::kPosition:
-      return true;
-    case driver::JointCommandKind::kImpedance:
-      return joint.kp != 0 || joint.kd != 0 || joint.torque_nm != 0;
-  }
-  return true;
-}
-
 }  // namespace
 
 HighTorqueDriver::HighTorqueDriver() = default;
@@ -86,10 +71,12 @@ driver::DeviceDescription HighTorqueDriver::describe() const {
       {"motor_info", "{\"motor\": name or index}: the motor's firmware and hardware versions and model name"},
       {"set_motor_timeout",
        "{\"timeout_ms\": 20..1000}: every motor's own command timeout: without commands that long a motor brakes by "
-       "itself (disarming it is only possible through params.motor_timeout_ms)"},
+       "itself (disarming it is only possible through params.motor_timeout_ms)",
+       driver::kNeedsFreeMotors},
       {"reboot_motor",
        "{\"motor\": name or index}: soft-reboots a motor robotd does not hold (no session, no KEEP or DAMPING, no "
-       "e-stop; on a board bus its whole port), which comes back free-wheeling; then re-arms its watchdog"},
+       "e-stop; on a board bus its whole port), which comes back free-wheeling; then re-arms its watchdog",
+       driver::kNeedsFreeMotors},
   };
   return description;
 }
@@ -368,7 +355,7 @@ HighTorqueDriver::RebootOutcome HighTorqueDriver::decide_reboot(const driver::Co
     if (m != motor && !whole_port) continue;
     const driver::JointCommand& joint = command.joints[m];
     if (joint.owned) return {.verdict = Verdict::kOwned, .blocking_motor = m};
-    if (holds(joint)) return {.verdict = Verdict::kHeld, .blocking_motor = m};
+    if (joint.holds()) return {.verdict = Verdict::kHeld, .blocking_motor = m};
   }
   switch (
       buses_[target.bus]->send_system(SystemRequest{.kind = SystemRequest::Kind::kSoftReboot, .motor = target.id})) {

@@ -72,11 +72,16 @@ Result<nlohmann::json> Parol6Ops::one_shot(std::string_view op, const nlohmann::
   if (auto error = arguments.finish()) return *error;
   const BoardSnapshot snapshot = driver_.snapshot();
   if (!snapshot.link_up) return make_error(ErrorCode::kNotAvailable, std::string(op) + ": the board is not connected");
-  if (snapshot.estop && request != OneShot::kDisable) {
-    return make_error(ErrorCode::kRefused, std::string(op) + ": robotd's e-stop is engaged; reset it first");
+  // Under the e-stop the board gets DISABLE every frame and one ENABLE at its reset, so a
+  // one-shot frame now would be dropped, and a disable would not outlast the reset.
+  if (snapshot.estop) {
+    return make_error(ErrorCode::kRefused,
+                      std::string(op) +
+                          ": robotd's e-stop is engaged (the board is disabled every frame until its "
+                          "reset, which enables it); reset it first");
   }
-  if (request == OneShot::kHome && snapshot.session_streaming) {
-    return make_error(ErrorCode::kRefused, "home: a session is driving the arm; release it first");
+  if (request == OneShot::kHome) {
+    if (auto refused = check_no_session_streams(op)) return *refused;
   }
   driver_.trajectory_.cancel(200ms);
   driver_.one_shot_.store(request, std::memory_order_release);

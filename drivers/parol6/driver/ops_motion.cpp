@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "codec/joint_units.hpp"
 #include "driver/parol6_ops.hpp"
@@ -13,6 +14,7 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr auto kCancelTimeout = 200ms;
+constexpr auto kSessionEndWait = 300ms;          // three exchanges at the slowest exchange_rate_hz, 10 Hz
 constexpr double kDefaultLinearSpeedMps = 0.05;  // the commander's Cartesian moves run at 2–60 mm/s
 
 nlohmann::json pose_json(const Pose& pose) {
@@ -72,6 +74,17 @@ JointVector Parol6Ops::max_acceleration() const {
   return a;
 }
 
+std::optional<Error> Parol6Ops::check_no_session_streams(std::string_view op) const {
+  // robotd runs the ops that need free motors with no session on the device and grants none
+  // meanwhile; one released just before may still stream until the next exchange.
+  const auto deadline = std::chrono::steady_clock::now() + kSessionEndWait;
+  while (driver_.snapshot().session_streaming && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(1ms);
+  }
+  if (!driver_.snapshot().session_streaming) return std::nullopt;
+  return make_error(ErrorCode::kRefused, std::string(op) + ": a session is driving the arm; release it first");
+}
+
 std::optional<Error> Parol6Ops::check_can_move(std::string_view op, bool needs_homed) const {
   const BoardSnapshot snapshot = driver_.snapshot();
   const std::string name(op);
@@ -81,9 +94,7 @@ std::optional<Error> Parol6Ops::check_can_move(std::string_view op, bool needs_h
   if (snapshot.estop || snapshot.reply.estop_pressed()) {
     return make_error(ErrorCode::kRefused, name + ": an e-stop is engaged (robotd's or the board's input)");
   }
-  if (snapshot.session_streaming) {
-    return make_error(ErrorCode::kRefused, name + ": a session is driving the arm; release it first");
-  }
+  if (auto refused = check_no_session_streams(op)) return refused;
   if (needs_homed && !snapshot.reply.all_homed()) {
     return make_error(ErrorCode::kRefused, name +
                                                ": the arm is not homed, so its joint positions mean nothing yet "

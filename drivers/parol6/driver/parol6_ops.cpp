@@ -11,23 +11,33 @@ namespace {
 struct OpSpec {
   std::string_view name;
   std::string_view help;
+  bool needs_free_motors = false;
 };
 
 constexpr std::array<OpSpec, 18> kOps{{
-    {"home", R"({"wait": bool}: run the board's homing sequence (HOME); with wait, return when every joint is homed)"},
-    {"jog", R"({"joint": 1..6, "velocity_rad_s": number, "duration_s": 0..10}: turn one joint at a speed for a )"
-            R"(while (streamed as positions: it stops if robotd stops))"},
-    {"move_joints", R"({"joints_rad": [6], "duration_s", "speed_fraction", "acceleration_fraction", "profile": )"
-                    R"("trap"|"poly"}: MoveJoint, all joints arriving together)"},
-    {"move_pose", R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "duration_s", "speed_fraction", )"
-                  R"("acceleration_fraction", "profile"}: MovePose, the tool to a pose, linear in joint space)"},
-    {"move_cart", R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "duration_s", "linear_speed_m_s", "profile"}: )"
-                  R"(MoveCart, the tool on a straight line)"},
+    {"home", R"({"wait": bool}: run the board's homing sequence (HOME); with wait, return when every joint is homed)",
+     driver::kNeedsFreeMotors},
+    {"jog",
+     R"({"joint": 1..6, "velocity_rad_s": number, "duration_s": 0..10}: turn one joint at a speed for a )"
+     R"(while (streamed as positions: it stops if robotd stops))",
+     driver::kNeedsFreeMotors},
+    {"move_joints",
+     R"({"joints_rad": [6], "duration_s", "speed_fraction", "acceleration_fraction", "profile": )"
+     R"("trap"|"poly"}: MoveJoint, all joints arriving together)",
+     driver::kNeedsFreeMotors},
+    {"move_pose",
+     R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "duration_s", "speed_fraction", )"
+     R"("acceleration_fraction", "profile"}: MovePose, the tool to a pose, linear in joint space)",
+     driver::kNeedsFreeMotors},
+    {"move_cart",
+     R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "duration_s", "linear_speed_m_s", "profile"}: )"
+     R"(MoveCart, the tool on a straight line)",
+     driver::kNeedsFreeMotors},
     {"stop", R"({}: end the running move (the arm holds where it is))"},
     {"fk", R"({"joints_rad": [6]}: the tool pose (measured joints if omitted))"},
-    {"enable", R"({}: ENABLE the board (after an e-stop or a disable))"},
-    {"disable", R"({}: DISABLE: motion commands are ignored, the steppers stay energised)"},
-    {"clear_error", R"({}: CLEAR ERROR (resets the board's homing state))"},
+    {"enable", R"({}: ENABLE the board (after an e-stop or a disable))", driver::kNeedsFreeMotors},
+    {"disable", R"({}: DISABLE: motion commands are ignored, the steppers stay energised)", driver::kNeedsFreeMotors},
+    {"clear_error", R"({}: CLEAR ERROR (resets the board's homing state))", driver::kNeedsFreeMotors},
     {"output", R"({"out1": bool, "out2": bool}: set the isolated outputs)"},
     {"gripper", R"({"position": 0..255 (0 open), "speed": 0..255, "current_a": 0.1..1.0, "activate": bool}: )"
                 R"(move the SSG-48 gripper)"},
@@ -50,7 +60,7 @@ std::vector<driver::OpDescription> op_descriptions() {
   std::vector<driver::OpDescription> ops;
   ops.reserve(kOps.size());
   for (const OpSpec& op : kOps) {
-    if (op.name != "demo") ops.push_back({std::string(op.name), std::string(op.help)});
+    if (op.name != "demo") ops.push_back({std::string(op.name), std::string(op.help), op.needs_free_motors});
   }
   return ops;
 }

@@ -2,7 +2,8 @@
 // SI units and radians at robotd's surface; steps and the board's codes stay in the codec.
 // Moves (jog, move_joints, move_pose, move_cart) are planned here, off the RT thread, and run
 // by the RT thread from the trajectory buffer; they are refused while a session owns joints or
-// an e-stop is engaged, and a session taking joints or an e-stop ends them.
+// an e-stop is engaged, and a session taking joints or an e-stop ends them. The ops that act on
+// the joints need free motors: robotd refuses them while a session holds one.
 #pragma once
 
 #include <optional>
@@ -57,6 +58,9 @@ class Parol6Ops {
   Result<nlohmann::json> fk(const nlohmann::json& args);
   /// Error unless the arm may be moved by an op now (`needs_homed`: the move uses positions).
   std::optional<Error> check_can_move(std::string_view op, bool needs_homed) const;
+  /// Error when a session still drives the arm after a short wait: robotd runs the ops that need
+  /// free motors only when no session holds one, but the board's exchange may lag a release.
+  std::optional<Error> check_no_session_streams(std::string_view op) const;
   /// Hands the planned positions (every exchange period) to the RT thread.
   Result<nlohmann::json> run(std::string_view op, const std::vector<JointVector>& samples);
   JointVector measured() const;

@@ -1,5 +1,6 @@
 // Ops that move the arm or change its mode outside a session: end_pose, move_c, mode, gripper,
 // enable / disable, master_slave.
+#include <chrono>
 #include <thread>
 
 #include "driver/piper_ops.hpp"
@@ -8,6 +9,9 @@ namespace robotd::piper {
 namespace {
 
 using namespace std::chrono_literals;
+
+/// How long an op waits for the loop to end a session robotd released just before it.
+constexpr auto kSessionEndWait = 100ms;
 
 std::optional<ControlMode> control_mode_named(const std::string& name) {
   if (name == "standby") return ControlMode::kStandby;
@@ -47,18 +51,30 @@ std::uint8_t id_offset(JsonReader& reader, std::string_view key) {
 
 }  // namespace
 
-std::optional<Error> PiperOps::take_arm_for(std::string_view op) {
-  const ArmSnapshot snapshot = driver_.snapshot();
+std::optional<Error> PiperOps::check_no_session_streams(std::string_view op) {
+  ArmSnapshot snapshot = driver_.snapshot();
   if (!snapshot.link_up) {
     return make_error(ErrorCode::kNotAvailable, std::string(op) + ": the arm is not connected");
   }
-  if (snapshot.estop) {
-    return make_error(ErrorCode::kRefused, std::string(op) + ": robotd's e-stop is engaged; reset it first");
+  // robotd runs these ops with no session on the device and grants none meanwhile; one released a
+  // moment ago may still own joints in the loop for a tick or two.
+  const auto deadline = std::chrono::steady_clock::now() + kSessionEndWait;
+  while (snapshot.any_owned && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(1ms);
+    snapshot = driver_.snapshot();
   }
   if (snapshot.any_owned) {
     return make_error(ErrorCode::kRefused, std::string(op) +
                                                ": a session owns joints of this arm; release it first (the session "
-                                               "streams joint targets and would fight the move)");
+                                               "streams joint targets and would fight the op)");
+  }
+  return std::nullopt;
+}
+
+std::optional<Error> PiperOps::take_arm_for(std::string_view op) {
+  if (auto refused = check_no_session_streams(op)) return refused;
+  if (driver_.snapshot().estop) {
+    return make_error(ErrorCode::kRefused, std::string(op) + ": robotd's e-stop is engaged; reset it first");
   }
   driver_.hold_for_ops_.store(true, std::memory_order_release);
   return std::nullopt;
@@ -168,13 +184,15 @@ Result<nlohmann::json> PiperOps::enable(const nlohmann::json& args, bool on) {
   OpArguments arguments(op, args);
   const auto joint = arguments.joint(/*allow_all=*/true);
   if (auto error = arguments.finish()) return *error;
-  if (!on) {
+  if (on) {
+    // Streaming held off, a motor that powers up holds where it is instead of running to a
+    // target robotd kept streaming while it was off.
     if (auto refused = take_arm_for(op)) return *refused;
-  } else if (!driver_.snapshot().link_up) {
-    return make_error(ErrorCode::kNotAvailable, "enable: the arm is not connected");
-  }
-  if (auto failed = send_all(std::array{encode(MotorEnable{.motor = *joint, .enable = on}, driver_.codec_)})) {
-    return *failed;
+    if (auto failed = send_all(std::array{encode(MotorEnable{.motor = *joint, .enable = true}, driver_.codec_)})) {
+      return *failed;
+    }
+  } else if (auto refused = disable_now(*joint)) {
+    return *refused;
   }
   // The enable bits come with the 40 Hz low-speed frames: report what they say a moment later.
   std::this_thread::sleep_for(100ms);
@@ -184,6 +202,38 @@ Result<nlohmann::json> PiperOps::enable(const nlohmann::json& args, bool on) {
   return nlohmann::json{{"sent", on ? "EnableArm" : "DisableArm"},
                         {"joint", *joint == kAllJoints ? nlohmann::json("all") : nlohmann::json(*joint)},
                         {"enabled", enabled}};
+}
+
+std::optional<Error> PiperOps::disable_now(std::uint8_t motor) {
+  using Verdict = DisableOutcome::Verdict;
+  if (auto refused = check_no_session_streams("disable")) return refused;
+  if (!driver_.disable_.offer(DisableRequest{.motor = motor})) {
+    return make_error(ErrorCode::kRefused, "disable: another disable is being decided; try again");
+  }
+  const auto outcome = driver_.disable_.await(std::chrono::milliseconds(driver_.params_.reply_timeout_ms));
+  if (!outcome) {
+    return make_error(ErrorCode::kNotAvailable, "disable: the control loop did not take the request within " +
+                                                    std::to_string(driver_.params_.reply_timeout_ms) +
+                                                    " ms (robotd pauses it during recover and reset_zero); nothing "
+                                                    "was sent");
+  }
+  const std::string joint = "joint " + std::to_string(outcome->joint + 1);
+  switch (outcome->verdict) {
+    case Verdict::kSent:
+      return std::nullopt;
+    case Verdict::kEstop:
+      return make_error(ErrorCode::kRefused, "disable: robotd's e-stop is engaged; reset it first");
+    case Verdict::kOwned:
+      return make_error(ErrorCode::kRefused, "disable: " + joint + " is held by a session; release it first");
+    case Verdict::kHeld:
+      return make_error(ErrorCode::kRefused,
+                        "disable: robotd still holds " + joint +
+                            " (the KEEP or DAMPING a session left it in), and disabled motors drop the arm; take the "
+                            "arm with a session and release it with ZERO_TORQUE first");
+    case Verdict::kNotSent:
+      break;
+  }
+  return make_error(ErrorCode::kTransport, "disable: could not send on " + std::string(driver_.link_name_.data()));
 }
 
 Result<nlohmann::json> PiperOps::master_slave(const nlohmann::json& args) {

@@ -70,6 +70,11 @@ Result<nlohmann::json> PiperOps::joint_config(const nlohmann::json& args) {
     reader.error("set_zero", "give at least one of set_zero, max_acc_rad_s2, clear_error");
   }
   if (auto error = arguments.finish()) return *error;
+  // A new zero moves the frame robotd's streamed targets are in: streaming stays off until a
+  // session takes joints again, so a hold robotd kept from before never reaches the arm.
+  if (config.set_zero) {
+    if (auto refused = take_arm_for("joint_config")) return *refused;
+  }
   config.joint = *joint;
   auto acked = driver_.set_and_await_ack(encode(config, driver_.codec_), kAckJointConfig);
   if (!acked) return acked.error();

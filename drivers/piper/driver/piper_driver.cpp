@@ -338,6 +338,7 @@ driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver:
   }
   if (arm_.status.arm_status != 0x01) resume_deadline_ns_ = 0;  // resumed
   estop_ = command.estop;
+  if (const DisableRequest* disable = disable_.take()) disable_.answer(decide_disable(command, disable->motor));
   const bool hold = hold_for_ops_.load(std::memory_order_acquire);
   streamer_.plan(command, arm_, hold, outgoing_);
   if (hold && streamer_.any_owned()) hold_for_ops_.store(false, std::memory_order_release);
@@ -351,6 +352,24 @@ driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver:
     return driver::IoResult::kFault;
   }
   return driver::IoResult::kOk;
+}
+
+DisableOutcome PiperDriver::decide_disable(const driver::CommandFrame& command, std::uint8_t motor) noexcept {
+  using Verdict = DisableOutcome::Verdict;
+  if (command.estop) return {.verdict = Verdict::kEstop};
+  // The joint stream holds every arm joint once it runs, so any joint robotd drives blocks a
+  // disable of any of them.
+  const bool streaming = !hold_for_ops_.load(std::memory_order_acquire);
+  for (std::size_t j = 0; j < std::min<std::size_t>(command.joint_count, kArmJoints); ++j) {
+    const driver::JointCommand& joint = command.joints[j];
+    if (joint.owned) return {.verdict = Verdict::kOwned, .joint = j};
+    if (streaming && joint.holds()) return {.verdict = Verdict::kHeld, .joint = j};
+  }
+  if (send(encode(MotorEnable{.motor = motor, .enable = false}, codec_)) != transport::CanIo::kDone) {
+    return {.verdict = Verdict::kNotSent};
+  }
+  hold_for_ops_.store(true, std::memory_order_release);  // robotd does not hold a disabled arm
+  return {.verdict = Verdict::kSent};
 }
 
 transport::CanIo PiperDriver::send(const CanMessage& message) noexcept {

@@ -27,6 +27,7 @@
 #include "driver/piper_params.hpp"
 #include "robotd/driver/abort_flag.hpp"
 #include "robotd/driver/driver.hpp"
+#include "robotd/driver/rt_handoff.hpp"
 #include "robotd/driver/seqlock.hpp"
 #include "robotd/driver/spsc_ring.hpp"
 #include "robotd/transport/can_transport.hpp"
@@ -48,6 +49,16 @@ struct ArmSnapshot {
   std::uint64_t tx_dropped = 0;  // the transmit queue was full
   double rx_fps = 0;             // over the last full second
   double tx_fps = 0;
+};
+
+/// The disable op's request to write(), and write()'s decision, made from that tick's commands.
+struct DisableRequest {
+  std::uint8_t motor = kAllJoints;  // 1 … 6, kAllJoints
+};
+struct DisableOutcome {
+  enum class Verdict : std::uint8_t { kSent, kEstop, kOwned, kHeld, kNotSent };
+  Verdict verdict = Verdict::kSent;
+  std::size_t joint = 0;  // kOwned, kHeld: the first arm joint in the way (0-based)
 };
 
 class PiperDriver final : public driver::Driver {
@@ -85,6 +96,9 @@ class PiperDriver final : public driver::Driver {
   void fill_feedback(driver::Feedback& out, std::int64_t now_ns) noexcept;
   void update_rates(std::int64_t now_ns) noexcept;
   void publish_snapshot() noexcept;
+  /// Sends the disable unless the e-stop is on or robotd drives an arm joint: a session, or the
+  /// KEEP or DAMPING one left, while that stream reaches the arm (no op holds it off).
+  DisableOutcome decide_disable(const driver::CommandFrame& command, std::uint8_t motor) noexcept;
 
   // Ops side (piper_ops*.cpp) shares these; exchanges run with ops_mutex_ held.
   transport::CanIo send(const CanMessage& message) noexcept;
@@ -111,7 +125,8 @@ class PiperDriver final : public driver::Driver {
 
   std::atomic<bool> connected_{false};
   std::atomic<bool> link_lost_{false};
-  std::atomic<bool> hold_for_ops_{false};  // a motion op drives the arm (see CommandStreamer::plan)
+  std::atomic<bool> hold_for_ops_{false};                      // a motion op drives the arm (see CommandStreamer::plan)
+  driver::RtHandoff<DisableRequest, DisableOutcome> disable_;  // the disable op, decided by write()
   std::atomic<std::uint64_t> tx_frames_{0};
   std::atomic<std::uint64_t> tx_dropped_{0};
   // Frames the arm sends in answer to a query or setting, from the RT thread to the op waiting

@@ -11,22 +11,33 @@ namespace {
 struct OpSpec {
   std::string_view name;
   std::string_view help;
+  bool needs_free_motors = false;
 };
 
 constexpr std::array<OpSpec, 25> kOps{{
-    {"end_pose", R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "motion": "p"|"l", "speed_percent": 1..100}: )"
-                 R"(move the flange to a pose with the arm's planner, MOVE P (joint space) or MOVE L (straight line))"},
-    {"move_c", R"({"start": pose, "middle": pose, "end": pose, "speed_percent": 1..100}: circular move )"
-               R"(through three poses (MOVE C), each pose {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad})"},
+    {"end_pose",
+     R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "motion": "p"|"l", "speed_percent": 1..100}: )"
+     R"(move the flange to a pose with the arm's planner, MOVE P (joint space) or MOVE L (straight line))",
+     driver::kNeedsFreeMotors},
+    {"move_c",
+     R"({"start": pose, "middle": pose, "end": pose, "speed_percent": 1..100}: circular move )"
+     R"(through three poses (MOVE C), each pose {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad})",
+     driver::kNeedsFreeMotors},
     {"mode",
      R"({"ctrl_mode": "standby"|"can"|"ethernet"|"wifi"|"offline", "move_mode": "p"|"j"|"l"|"c"|"mit"|"cpv", )"
-     R"("speed_percent": 0..100, "mit": bool, "installation": "horizontal"|"side_left"|"side_right"}: ModeCtrl)"},
-    {"gripper", R"({"stroke_m": 0..max, "effort_nm": 0..5, "enable": bool, "clear_error": bool, "set_zero": bool}: )"
-                R"(GripperCtrl when no session streams the gripper joint)"},
-    {"enable", R"({"joint": 1..6|"all"}: enable motors (0x471))"},
-    {"disable", R"({"joint": 1..6|"all"}: disable motors (0x471): they lose torque at once, the arm drops)"},
-    {"master_slave", R"({"role": "master"|"slave", "feedback_offset": 0|16|32, "control_offset": 0|16|32, )"
-                     R"("linkage_offset": 0|16|32}: MasterSlaveConfig (0x470))"},
+     R"("speed_percent": 0..100, "mit": bool, "installation": "horizontal"|"side_left"|"side_right"}: ModeCtrl)",
+     driver::kNeedsFreeMotors},
+    {"gripper",
+     R"({"stroke_m": 0..max, "effort_nm": 0..5, "enable": bool, "clear_error": bool, "set_zero": bool}: )"
+     R"(GripperCtrl when no session streams the gripper joint)",
+     driver::kNeedsFreeMotors},
+    {"enable", R"({"joint": 1..6|"all"}: enable motors (0x471))", driver::kNeedsFreeMotors},
+    {"disable", R"({"joint": 1..6|"all"}: disable motors (0x471): they lose torque at once, the arm drops)",
+     driver::kNeedsFreeMotors},
+    {"master_slave",
+     R"({"role": "master"|"slave", "feedback_offset": 0|16|32, "control_offset": 0|16|32, )"
+     R"("linkage_offset": 0|16|32}: MasterSlaveConfig (0x470))",
+     driver::kNeedsFreeMotors},
     {"limits", R"({}: per joint angle limits (rad) and max speed (rad/s) the arm holds (0x472 → 0x473))"},
     {"acc_limits", R"({}: per joint max acceleration (rad/s²) the arm holds (0x472 → 0x47C))"},
     {"firmware", R"({}: the firmware information text and software version (0x4AF))"},
@@ -38,19 +49,32 @@ constexpr std::array<OpSpec, 25> kOps{{
               R"(voltage, temperatures, driver status, enable; gripper; the arm's end pose)"},
     {"fk", R"({"joints_rad": [6 numbers]}: forward kinematics of the flange (measured joints if omitted))"},
     {"master_commands", R"({}: the last ModeCtrl, joint and gripper commands a master (leader) arm sent on the bus)"},
-    {"set_joint_limits", R"({"joint": 1..6, "min_angle_rad", "max_angle_rad", "max_speed_rad_s"}: )"
-                         R"(MotorAngleLimitMaxSpdSet (0x474, saved in the joint's flash); omitted fields stay)"},
-    {"set_max_speed", R"({"joint": 1..6|"all", "max_speed_rad_s": 0..3}: MotorMaxSpdSet (0x474))"},
-    {"joint_config", R"({"joint": 1..6|"all", "set_zero": bool, "max_acc_rad_s2": 0..5, "clear_error": bool}: )"
-                     R"(JointConfig (0x475); set_zero makes the current position the joint's zero)"},
-    {"set_max_acc", R"({"joint": 1..6|"all", "max_acc_rad_s2": 0..5}: JointMaxAccConfig (0x475))"},
-    {"param_config", R"({"reset_end_limits": bool, "reset_joint_limits": bool, "feedback_48x": "enable"|"disable", )"
-                     R"("payload": "empty"|"half"|"full"}: ArmParamEnquiryAndConfig settings (0x477))"},
-    {"set_end_limits", R"({"max_linear_velocity_m_s", "max_angular_velocity_rad_s", "max_linear_acceleration_m_s2", )"
-                       R"("max_angular_acceleration_rad_s2"}: EndSpdAndAccParamSet (0x479); omitted fields stay)"},
-    {"set_crash_protection", R"({"levels": [6 integers 0..8]}: CrashProtectionConfig (0x47A))"},
-    {"set_gripper_params", R"({"teaching_range_percent": 100..200, "max_range_mm": 0|70|100, )"
-                           R"("teaching_friction": 1..10}: GripperTeachingPendantParamConfig (0x47D))"},
+    {"set_joint_limits",
+     R"({"joint": 1..6, "min_angle_rad", "max_angle_rad", "max_speed_rad_s"}: )"
+     R"(MotorAngleLimitMaxSpdSet (0x474, saved in the joint's flash); omitted fields stay)",
+     driver::kNeedsFreeMotors},
+    {"set_max_speed", R"({"joint": 1..6|"all", "max_speed_rad_s": 0..3}: MotorMaxSpdSet (0x474))",
+     driver::kNeedsFreeMotors},
+    {"joint_config",
+     R"({"joint": 1..6|"all", "set_zero": bool, "max_acc_rad_s2": 0..5, "clear_error": bool}: )"
+     R"(JointConfig (0x475); set_zero makes the current position the joint's zero)",
+     driver::kNeedsFreeMotors},
+    {"set_max_acc", R"({"joint": 1..6|"all", "max_acc_rad_s2": 0..5}: JointMaxAccConfig (0x475))",
+     driver::kNeedsFreeMotors},
+    {"param_config",
+     R"({"reset_end_limits": bool, "reset_joint_limits": bool, "feedback_48x": "enable"|"disable", )"
+     R"("payload": "empty"|"half"|"full"}: ArmParamEnquiryAndConfig settings (0x477))",
+     driver::kNeedsFreeMotors},
+    {"set_end_limits",
+     R"({"max_linear_velocity_m_s", "max_angular_velocity_rad_s", "max_linear_acceleration_m_s2", )"
+     R"("max_angular_acceleration_rad_s2"}: EndSpdAndAccParamSet (0x479); omitted fields stay)",
+     driver::kNeedsFreeMotors},
+    {"set_crash_protection", R"({"levels": [6 integers 0..8]}: CrashProtectionConfig (0x47A))",
+     driver::kNeedsFreeMotors},
+    {"set_gripper_params",
+     R"({"teaching_range_percent": 100..200, "max_range_mm": 0|70|100, )"
+     R"("teaching_friction": 1..10}: GripperTeachingPendantParamConfig (0x47D))",
+     driver::kNeedsFreeMotors},
 }};
 
 std::string_view help_of(std::string_view op) {
@@ -63,7 +87,7 @@ std::string_view help_of(std::string_view op) {
 std::vector<driver::OpDescription> op_descriptions() {
   std::vector<driver::OpDescription> ops;
   ops.reserve(kOps.size());
-  for (const OpSpec& op : kOps) ops.push_back({std::string(op.name), std::string(op.help)});
+  for (const OpSpec& op : kOps) ops.push_back({std::string(op.name), std::string(op.help), op.needs_free_motors});
   return ops;
 }
 

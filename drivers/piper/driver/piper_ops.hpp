@@ -1,7 +1,8 @@
 // The PiPER's device_call ops: the vendor API beyond joint streaming (docs/drivers/piper.md has
 // the table vendor function → op). Arguments in SI units and radians; vendor units stay in the
-// codec. Motion ops (end_pose, move_c, mode, gripper, disable) are refused while a session owns
-// joints, and hold joint streaming off until a session takes joints again.
+// codec. The ops that act on the joints need free motors (robotd refuses them while a session
+// holds one); the motion ops (end_pose, move_c, mode, gripper, enable, master_slave) hold joint
+// streaming off until a session takes joints again; disable is decided by write() at its tick.
 #pragma once
 
 #include <optional>
@@ -42,8 +43,13 @@ class PiperOps {
   Result<nlohmann::json> gripper(const nlohmann::json& args);
   Result<nlohmann::json> enable(const nlohmann::json& args, bool on);
   Result<nlohmann::json> master_slave(const nlohmann::json& args);
+  /// Error unless the arm is connected and no session streams to it (robotd runs the ops that
+  /// need free motors only then, but the loop may still be ending a session released just before).
+  std::optional<Error> check_no_session_streams(std::string_view op);
   /// Error unless the arm may be driven by an op now; on success streaming is held off.
   std::optional<Error> take_arm_for(std::string_view op);
+  /// Hands the disable to write(), which decides at its tick (PiperDriver::decide_disable).
+  std::optional<Error> disable_now(std::uint8_t motor);
   std::optional<Error> send_all(std::span<const CanMessage> frames);
 
   // Queries (ops_queries.cpp).

@@ -12,25 +12,33 @@ namespace {
 struct OpSpec {
   std::string_view name;
   std::string_view help;
+  bool needs_free_motors = false;
 };
 
 constexpr std::array<OpSpec, 33> kOps{{
-    {"movej", R"({"joints_rad": [dof], "v": 1..100 %, "r": 0..100 %, "trajectory_connect": bool, "block", )"
-              R"("timeout_s"}: planned joint move (movej))"},
-    {"movel", R"({"x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad", "v", "r", "trajectory_connect", "block", )"
-              R"("timeout_s"}: straight line to a pose in the work frame (movel))"},
-    {"movej_p", R"({"x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad", "v", "r", "trajectory_connect", "block", )"
-                R"("timeout_s"}: joint-space move to a pose (movej_p))"},
-    {"set_arm_stop", R"({}: quick stop of the trajectory)"},
-    {"set_arm_slow_stop", R"({}: decelerate and stop on the path)"},
-    {"set_arm_pause", R"({}: pause on the path (resume with set_arm_continue))"},
-    {"set_arm_continue", R"({}: resume a paused trajectory)"},
-    {"set_delete_current_trajectory", R"({}: drop the current trajectory (after a pause))"},
-    {"set_arm_delete_trajectory", R"({}: drop every queued trajectory (after a pause))"},
-    {"set_joint_en_state", R"({"joint": 1..dof, "enable": bool}: enable or disable one joint)"},
-    {"set_joint_clear_err", R"({"joint": 1..dof}: clear one joint's error)"},
-    {"clear_system_err", R"({}: clear the controller's system error)"},
-    {"set_arm_power", R"({"on": bool}: switch the arm's power)"},
+    {"movej",
+     R"({"joints_rad": [dof], "v": 1..100 %, "r": 0..100 %, "trajectory_connect": bool, "block", )"
+     R"("timeout_s"}: planned joint move (movej))",
+     driver::kNeedsFreeMotors},
+    {"movel",
+     R"({"x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad", "v", "r", "trajectory_connect", "block", )"
+     R"("timeout_s"}: straight line to a pose in the work frame (movel))",
+     driver::kNeedsFreeMotors},
+    {"movej_p",
+     R"({"x_m", "y_m", "z_m", "rx_rad", "ry_rad", "rz_rad", "v", "r", "trajectory_connect", "block", )"
+     R"("timeout_s"}: joint-space move to a pose (movej_p))",
+     driver::kNeedsFreeMotors},
+    {"set_arm_stop", R"({}: quick stop of the trajectory)", driver::kNeedsFreeMotors},
+    {"set_arm_slow_stop", R"({}: decelerate and stop on the path)", driver::kNeedsFreeMotors},
+    {"set_arm_pause", R"({}: pause on the path (resume with set_arm_continue))", driver::kNeedsFreeMotors},
+    {"set_arm_continue", R"({}: resume a paused trajectory)", driver::kNeedsFreeMotors},
+    {"set_delete_current_trajectory", R"({}: drop the current trajectory (after a pause))", driver::kNeedsFreeMotors},
+    {"set_arm_delete_trajectory", R"({}: drop every queued trajectory (after a pause))", driver::kNeedsFreeMotors},
+    {"set_joint_en_state", R"({"joint": 1..dof, "enable": bool}: enable or disable one joint)",
+     driver::kNeedsFreeMotors},
+    {"set_joint_clear_err", R"({"joint": 1..dof}: clear one joint's error)", driver::kNeedsFreeMotors},
+    {"clear_system_err", R"({}: clear the controller's system error)", driver::kNeedsFreeMotors},
+    {"set_arm_power", R"({"on": bool}: switch the arm's power)", driver::kNeedsFreeMotors},
     {"set_gripper_route", R"({"min": 0..1000, "max": 0..1000}: the gripper's opening limits (kept by the gripper))"},
     {"set_gripper_release", R"({"speed": 1..1000, "block", "timeout_s"}: open the gripper)"},
     {"set_gripper_pick", R"({"speed": 1..1000, "force": 50..1000, "block", "timeout_s"}: close until the force )"
@@ -68,7 +76,7 @@ bool starts_with(std::string_view text, std::string_view prefix) { return text.s
 std::vector<driver::OpDescription> op_descriptions() {
   std::vector<driver::OpDescription> ops;
   ops.reserve(kOps.size());
-  for (const OpSpec& op : kOps) ops.push_back({std::string(op.name), std::string(op.help)});
+  for (const OpSpec& op : kOps) ops.push_back({std::string(op.name), std::string(op.help), op.needs_free_motors});
   return ops;
 }
 

@@ -11,37 +11,53 @@ namespace {
 struct OpSpec {
   std::string_view name;
   std::string_view usage;
+  bool needs_free_motors = false;
 };
 
 constexpr std::array<OpSpec, 29> kOps{{
-    {"motion_en", R"({"joint": 1..dof or "all", "enable": bool}: enable or disable joint motors (resets the system))"},
-    {"set_state", R"({"state": 0 start | 3 pause | 4 stop | 6 decelerate to stop}: the motion state)"},
-    {"set_mode", R"({"mode": 0 position | 2 joint teaching | 4..7}: the control mode (servo, 1, is robotd's while )"
-                 R"(a session streams; resets the system))"},
+    {"motion_en", R"({"joint": 1..dof or "all", "enable": bool}: enable or disable joint motors (resets the system))",
+     driver::kNeedsFreeMotors},
+    {"set_state", R"({"state": 0 start | 3 pause | 4 stop | 6 decelerate to stop}: the motion state)",
+     driver::kNeedsFreeMotors},
+    {"set_mode",
+     R"({"mode": 0 position | 2 joint teaching | 4..7}: the control mode (servo, 1, is robotd's while )"
+     R"(a session streams; resets the system))",
+     driver::kNeedsFreeMotors},
     {"get_state", R"({}: the motion state (1 moving, 2 sleeping, 3 paused, 4 stopped, 5 reset) and its text)"},
     {"get_cmdnum", R"({}: the number of queued motion commands)"},
     {"get_err_code", R"({}: the controller's error and warning codes and their texts)"},
-    {"clean_err", R"({}: clear the error (resets the system: set_state 0 to move again))"},
+    {"clean_err", R"({}: clear the error (resets the system: set_state 0 to move again))", driver::kNeedsFreeMotors},
     {"clean_war", R"({}: clear the warning)"},
-    {"set_brake", R"({"joint": 1..dof or "all", "release": bool}: release or engage joint brakes. CAUTION: a )"
-                  R"(released joint without motor power falls)"},
+    {"set_brake",
+     R"({"joint": 1..dof or "all", "release": bool}: release or engage joint brakes. CAUTION: a )"
+     R"(released joint without motor power falls)",
+     driver::kNeedsFreeMotors},
     {"move_line",
      R"({"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad", "speed_m_s" (0.1), "acc_m_s2" (2), )"
-     R"("mvtime_s" (0), "wait" (false), "timeout_s" (60)}: straight line of the TCP to a base-frame pose)"},
-    {"move_lineb", R"({pose as move_line, "speed_m_s", "acc_m_s2", "mvtime_s", "radius_m" (0), "wait", )"
-                   R"("timeout_s"}: straight line blended into the next move)"},
-    {"move_joint", R"({"joints_rad": [dof], "speed_rad_s" (0.35), "acc_rad_s2" (8), "mvtime_s" (0), "wait" )"
-                   R"((false), "timeout_s" (60)}: joint-space move)"},
-    {"move_gohome", R"({"speed_rad_s" (0.35), "acc_rad_s2" (8), "mvtime_s" (0), "wait" (false), "timeout_s" )"
-                    R"((60)}: joint-space move to all zeros)"},
-    {"sleep_instruction", R"({"seconds": 0..3600}: a queued pause between moves)"},
-    {"set_tcp_jerk", R"({"jerk_m_s3": (0, 100]}: TCP jerk)"},
-    {"set_tcp_maxacc", R"({"acc_m_s2": (0, 50]}: TCP maximum acceleration)"},
-    {"set_joint_jerk", R"({"jerk_rad_s3": (0, 500]}: joint jerk)"},
-    {"set_joint_maxacc", R"({"acc_rad_s2": (0, 20]}: joint maximum acceleration)"},
-    {"set_tcp_offset", R"({"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}: the TCP relative to the )"
-                       R"(flange (resets the system))"},
-    {"clean_conf", R"({}: restore the controller's default settings)"},
+     R"("mvtime_s" (0), "wait" (false), "timeout_s" (60)}: straight line of the TCP to a base-frame pose)",
+     driver::kNeedsFreeMotors},
+    {"move_lineb",
+     R"({pose as move_line, "speed_m_s", "acc_m_s2", "mvtime_s", "radius_m" (0), "wait", )"
+     R"("timeout_s"}: straight line blended into the next move)",
+     driver::kNeedsFreeMotors},
+    {"move_joint",
+     R"({"joints_rad": [dof], "speed_rad_s" (0.35), "acc_rad_s2" (8), "mvtime_s" (0), "wait" )"
+     R"((false), "timeout_s" (60)}: joint-space move)",
+     driver::kNeedsFreeMotors},
+    {"move_gohome",
+     R"({"speed_rad_s" (0.35), "acc_rad_s2" (8), "mvtime_s" (0), "wait" (false), "timeout_s" )"
+     R"((60)}: joint-space move to all zeros)",
+     driver::kNeedsFreeMotors},
+    {"sleep_instruction", R"({"seconds": 0..3600}: a queued pause between moves)", driver::kNeedsFreeMotors},
+    {"set_tcp_jerk", R"({"jerk_m_s3": (0, 100]}: TCP jerk)", driver::kNeedsFreeMotors},
+    {"set_tcp_maxacc", R"({"acc_m_s2": (0, 50]}: TCP maximum acceleration)", driver::kNeedsFreeMotors},
+    {"set_joint_jerk", R"({"jerk_rad_s3": (0, 500]}: joint jerk)", driver::kNeedsFreeMotors},
+    {"set_joint_maxacc", R"({"acc_rad_s2": (0, 20]}: joint maximum acceleration)", driver::kNeedsFreeMotors},
+    {"set_tcp_offset",
+     R"({"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}: the TCP relative to the )"
+     R"(flange (resets the system))",
+     driver::kNeedsFreeMotors},
+    {"clean_conf", R"({}: restore the controller's default settings)", driver::kNeedsFreeMotors},
     {"save_conf", R"({}: keep the current settings (TCP offset, limits) across controller restarts)"},
     {"get_tcp_pose", R"({}: the TCP pose: x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad)"},
     {"get_joint_pose", R"({}: the joint angles: joints_rad)"},
@@ -63,7 +79,7 @@ std::string_view op_usage(std::string_view op) {
 std::vector<driver::OpDescription> op_descriptions() {
   std::vector<driver::OpDescription> ops;
   ops.reserve(kOps.size());
-  for (const OpSpec& op : kOps) ops.push_back({std::string(op.name), std::string(op.usage)});
+  for (const OpSpec& op : kOps) ops.push_back({std::string(op.name), std::string(op.usage), op.needs_free_motors});
   return ops;
 }
 

@@ -267,6 +267,9 @@ TEST_P(HighTorqueDriverTest, DescribeTellsTheJointMapAndTheOps) {
   ops.reserve(description.ops.size());
   for (const auto& op : description.ops) ops.push_back(op.name);
   EXPECT_EQ(ops, (std::vector<std::string>{"state", "motor_info", "set_motor_timeout", "reboot_motor"}));
+  // The two that act on the motors need them free; a reboot is still decided at its tick too.
+  EXPECT_EQ(testing::ops_needing_free_motors(description),
+            (std::vector<std::string>{"set_motor_timeout", "reboot_motor"}));
 }
 
 // Joint targets become MIT frames through the joint map (direction, zero offset), every bus

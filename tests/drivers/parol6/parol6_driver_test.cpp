@@ -246,6 +246,38 @@ TEST_F(Parol6DriverTest, MovesAreRefusedWhileASessionDrives) {
   EXPECT_NE(refused.error().message.find("session"), std::string::npos) << refused.error().message;
 }
 
+// The ops that move the joints or switch what the board does with them need free motors; the
+// stop, the I/O, the gripper (not one of robotd's joints) and the queries do not.
+TEST_F(Parol6DriverTest, TheOpsThatActOnTheJointsNeedFreeMotors) {
+  EXPECT_EQ(testing::ops_needing_free_motors(driver_.describe()),
+            (std::vector<std::string>{"home", "jog", "move_joints", "move_pose", "move_cart", "enable", "disable",
+                                      "clear_error"}));
+}
+
+// Under robotd's e-stop the board is disabled every frame and enabled at the reset, so a one-shot
+// (disable included) would be dropped or undone: every one is refused until the reset. After it,
+// disable reaches the board.
+TEST_F(Parol6DriverTest, OneShotsAreRefusedUnderTheEstopAndDisableWorksAfterItsReset) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kJoints);
+  const auto board_enabled = [&] { return sim_.control({{"op", "state"}})["enabled"].get<bool>(); };
+  driver::CommandFrame estop = position_frame(standby_rad(), /*owned=*/false);
+  estop.estop = true;
+  loop.set_command(estop);
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return !board_enabled(); })) << "the e-stop's DISABLE";
+  for (const char* op : {"disable", "enable", "clear_error", "home"}) {
+    const auto refused = driver_.call(op, nlohmann::json::object());
+    ASSERT_FALSE(refused) << op;
+    EXPECT_EQ(refused.error().code, ErrorCode::kRefused);
+    EXPECT_NE(refused.error().message.find("robotd's e-stop is engaged"), std::string::npos) << refused.error().message;
+  }
+  loop.set_command(position_frame(standby_rad(), /*owned=*/false));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return board_enabled(); })) << "the reset's ENABLE";
+  const auto disabled = driver_.call("disable", nlohmann::json::object());
+  ASSERT_TRUE(disabled) << disabled.error().message;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return !board_enabled(); }));
+}
+
 TEST_F(Parol6DriverTest, GripperAndOutputsReachTheBoard) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);

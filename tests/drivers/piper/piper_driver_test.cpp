@@ -65,6 +65,15 @@ TEST_F(PiperDriverTest, ConnectChecksFeedbackAndReadsTheFirmware) {
   driver_.disconnect();
 }
 
+// The ops that act on the joints robotd drives need free motors: robotd refuses them while a
+// session holds one. The queries do not.
+TEST_F(PiperDriverTest, TheOpsThatActOnTheJointsNeedFreeMotors) {
+  EXPECT_EQ(testing::ops_needing_free_motors(driver_.describe()),
+            (std::vector<std::string>{"end_pose", "move_c", "mode", "gripper", "enable", "disable", "master_slave",
+                                      "set_joint_limits", "set_max_speed", "joint_config", "set_max_acc",
+                                      "param_config", "set_end_limits", "set_crash_protection", "set_gripper_params"}));
+}
+
 TEST_F(PiperDriverTest, ConnectSaysWhatIsWrongWhenNothingListens) {
   PiperDriver lonely;
   ASSERT_TRUE(lonely.configure(driver_params("/tmp/robotd-piper-nobody-here.sock")));
@@ -414,6 +423,64 @@ TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().code, ErrorCode::kRefused);
   EXPECT_NE(refused.error().message.find("session"), std::string::npos) << refused.error().message;
+}
+
+// disable drops the arm, so write() decides it at its tick, from that tick's commands: refused
+// under the e-stop, for a session's joint and while robotd's stream still holds a joint (the KEEP
+// a session left); a free arm is disabled. Streaming then stays off until a session takes joints
+// again, so enabling the arm holds it where it is.
+TEST_F(PiperDriverTest, DisableIsDecidedAtTheTickAndNeverDropsAJointRobotdHolds) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDeviceJoints);
+  const auto enabled_joints = [&] {
+    const nlohmann::json state = sim_.control({{"op", "state"}});
+    int count = 0;
+    for (const auto& joint : state["joints"]) count += joint["enabled"].get<bool>() ? 1 : 0;
+    return count;
+  };
+  const auto frames_received = [&](const char* id) {
+    return sim_.control({{"op", "state"}})["frames_received"].value(id, 0);
+  };
+  const auto refused_with = [&](const std::string& why) {
+    const auto disabled = driver_.call("disable", nullptr);
+    ASSERT_FALSE(disabled) << why;
+    EXPECT_EQ(disabled.error().code, ErrorCode::kRefused);
+    EXPECT_NE(disabled.error().message.find(why), std::string::npos) << disabled.error().message;
+  };
+  driver::CommandFrame estop;
+  estop.joint_count = kDeviceJoints;
+  estop.estop = true;
+  loop.set_command(estop);
+  std::this_thread::sleep_for(20ms);
+  refused_with("disable: robotd's e-stop is engaged");
+
+  loop.set_command(positions({0.1, 0, 0, 0, 0, 0}));  // a session: the arm is enabled for it
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return enabled_joints() == 6; }));
+  refused_with("a session owns joints of this arm");
+  loop.set_command(positions({0.1, 0, 0, 0, 0, 0}, /*owned=*/false));  // the KEEP it left
+  refused_with("robotd still holds joint 1 (the KEEP or DAMPING a session left it in)");
+  EXPECT_EQ(enabled_joints(), 6);
+
+  driver::CommandFrame let_go;  // released with ZERO_TORQUE: nothing holds the arm
+  let_go.joint_count = kDeviceJoints;
+  for (std::size_t j = 0; j < 6; ++j) let_go.joints[j].kind = JointCommandKind::kImpedance;
+  loop.set_command(let_go);
+  std::this_thread::sleep_for(20ms);
+  const auto disabled = driver_.call("disable", nullptr);
+  ASSERT_TRUE(disabled) << disabled.error().message;
+  EXPECT_EQ(disabled.value()["enabled"], nlohmann::json::array({false, false, false, false, false, false}));
+  EXPECT_EQ(enabled_joints(), 0);
+
+  const auto enabled = driver_.call("enable", nullptr);
+  ASSERT_TRUE(enabled) << enabled.error().message;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return enabled_joints() == 6; }));
+  const int mit_frames = frames_received("0x15A");
+  std::this_thread::sleep_for(100ms);
+  EXPECT_EQ(frames_received("0x15A"), mit_frames) << "robotd streamed to the arm an op took";
+  const int joint_frames = frames_received("0x155");
+  loop.set_command(positions({0, 0, 0, 0, 0, 0}));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return frames_received("0x155") > joint_frames; }))
+      << "a session's stream did not resume";
 }
 
 TEST_F(PiperDriverTest, GripperFollowsItsJointAndItsOp) {

@@ -103,6 +103,18 @@ TEST(RealmanParams, DescribeTellsTheModelsJointsAndLimits) {
   EXPECT_TRUE(description.has_end_pose);
 }
 
+// The ops that act on the arm robotd drives need free motors: power and enable, planned motion,
+// the trajectory's state and error clearing. The gripper, the hand and the queries do not.
+TEST(RealmanParams, TheOpsThatActOnTheArmNeedFreeMotors) {
+  RealmanDriver driver;
+  ASSERT_TRUE(driver.configure({{"model", "RM65"}}));
+  EXPECT_EQ(
+      testing::ops_needing_free_motors(driver.describe()),
+      (std::vector<std::string>{"movej", "movel", "movej_p", "set_arm_stop", "set_arm_slow_stop", "set_arm_pause",
+                                "set_arm_continue", "set_delete_current_trajectory", "set_arm_delete_trajectory",
+                                "set_joint_en_state", "set_joint_clear_err", "clear_system_err", "set_arm_power"}));
+}
+
 TEST(RealmanConnect, NothingListeningIsNotAvailableAndNamesTheAddress) {
   const std::uint16_t port = RealmanSimProcess::free_port();
   RealmanDriver driver;

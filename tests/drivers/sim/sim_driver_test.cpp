@@ -67,6 +67,23 @@ class SimDriverTest : public ::testing::Test {
     }
   }
 
+  /// Calls `op` while another thread plays robotd's loop, writing `command` every millisecond:
+  /// write() decides a disable of the motors at its tick.
+  Result<json> call_while_writing(const std::string& op, const json& args, const CommandFrame& command) {
+    std::atomic<bool> done{false};
+    std::thread loop([&] {
+      driver::FaultInfo fault;
+      while (!done.load()) {
+        (void)driver_.write(command, fault);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    });
+    Result<json> result = driver_.call(op, args);
+    done.store(true);
+    loop.join();
+    return result;
+  }
+
   json call(const std::string& op, const json& args = json::object()) {
     Result<json> result = driver_.call(op, args);
     EXPECT_TRUE(result.ok()) << op << ": " << result.error().message;
@@ -102,13 +119,17 @@ TEST_F(SimDriverTest, DescribeReportsJointsLimitsCapabilitiesAndOps) {
   EXPECT_TRUE(description.supports_zero_torque);
   EXPECT_TRUE(description.has_imu);
   std::string op_names;
+  std::string needing_free_motors;
   for (const driver::OpDescription& op : description.ops) {
     op_names += op.name + " ";
+    if (op.needs_free_motors) needing_free_motors += op.name + " ";
     EXPECT_FALSE(op.help.empty()) << op.name;
   }
   EXPECT_EQ(op_names,
-            "stop_feedback estop_input disconnect raise_fault set_external_torque set_imu stall slow_maintenance "
-            "command_latency state ");
+            "motors stop_feedback estop_input disconnect raise_fault set_external_torque set_imu stall "
+            "slow_maintenance command_latency state ");
+  // The fault injections model what happens to a robot whoever holds it; only the motors act on the joints.
+  EXPECT_EQ(needing_free_motors, "motors ");
 }
 
 TEST_F(SimDriverTest, ConfigureRejectsInvalidParamsNamingTheKey) {
@@ -337,6 +358,80 @@ TEST_F(SimDriverTest, AbortMaintenanceEndsASlowRecoverOrResetZeroAndTheNextOneWo
   EXPECT_TRUE(driver_.reset_zero({}).ok());
 }
 
+// The motors op models a vendor's enable/disable: write() decides a disable from its tick's
+// commands, never while robotd makes a joint work (a session, or the KEEP or DAMPING one left) or
+// under the e-stop, since disabled motors let go.
+TEST_F(SimDriverTest, DisablingTheMotorsWaitsUntilRobotdLetsGoOfEveryJoint) {
+  start();
+  const json off = {{"enabled", false}};
+  const auto refused_with = [&](const CommandFrame& command, const std::string& why) {
+    const Result<json> disabled = call_while_writing("motors", off, command);
+    ASSERT_FALSE(disabled.ok()) << why;
+    EXPECT_EQ(disabled.error().code, ErrorCode::kRefused);
+    EXPECT_NE(disabled.error().message.find(why), std::string::npos) << disabled.error().message;
+    EXPECT_EQ(diagnostic("motors"), "enabled");
+  };
+  CommandFrame estop;
+  estop.joint_count = kArmJoints;
+  estop.estop = true;
+  refused_with(estop, "robotd's e-stop damps every joint");
+  refused_with(position_frame(0.2), "joint 'base' is held by a session");
+  CommandFrame left_behind;  // what a session's fallbacks leave: nobody owns the joints
+  left_behind.joint_count = kArmJoints;
+  left_behind.joints[2] = JointCommand{.kind = JointCommandKind::kPosition, .position_rad = 0.2};  // KEEP
+  refused_with(left_behind, "robotd still holds joint 'elbow' (the KEEP or DAMPING a session left it in)");
+  left_behind.joints[2] = JointCommand{.kind = JointCommandKind::kImpedance, .kd = 5};  // DAMPING
+  refused_with(left_behind, "robotd still holds joint 'elbow'");
+
+  left_behind.joints[2] = JointCommand{.kind = JointCommandKind::kImpedance};  // ZERO_TORQUE
+  const Result<json> disabled = call_while_writing("motors", off, left_behind);
+  ASSERT_TRUE(disabled.ok()) << disabled.error().message;
+  EXPECT_EQ(disabled.value(), json({{"motors", "disabled"}}));
+  EXPECT_EQ(diagnostic("motors"), "disabled");
+  EXPECT_EQ(call("state")["motors"], "disabled");
+
+  // Disabled motors apply no torque, not even the e-stop's damping: the loaded shoulder coasts
+  // (damped, it would sink at 2 / (5 + 0.5) = 0.36 rad/s).
+  call("set_external_torque", {{"joint", "shoulder"}, {"torque_nm", -2.0}});
+  CommandFrame holding = estop;
+  holding.joints[1] = JointCommand{.kind = JointCommandKind::kPosition};
+  run(holding, 0.1);
+  EXPECT_LT(feedback_.joints[1].velocity_rad_s, -1.0);
+  EXPECT_EQ(feedback_.joints[1].effort_nm, 0);
+
+  // A session taking a joint enables them, as the op does.
+  run(position_frame(0), 0.002);
+  EXPECT_EQ(diagnostic("motors"), "enabled");
+  ASSERT_TRUE(call_while_writing("motors", off, CommandFrame{}).ok());
+  EXPECT_EQ(call("motors", {{"enabled", true}}), json({{"motors", "enabled"}}));
+  EXPECT_EQ(diagnostic("motors"), "enabled");
+}
+
+// A controller slow to answer: slow_maintenance makes the next motors op wait, and the
+// diagnostics say so meanwhile.
+TEST_F(SimDriverTest, SlowMaintenanceDelaysTheNextMotorsOp) {
+  start();
+  call("slow_maintenance", {{"ms", 300}});
+  const auto started = std::chrono::steady_clock::now();
+  std::atomic<bool> answered{false};
+  std::thread enabling([&] {
+    call("motors", {{"enabled", true}});
+    answered.store(true);
+  });
+  bool seen_switching = false;
+  while (!seen_switching && !answered.load()) {
+    seen_switching = diagnostic("motors").find("switching") != std::string::npos;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  enabling.join();
+  EXPECT_TRUE(seen_switching) << "the diagnostics never showed the motors op waiting";
+  EXPECT_GE(std::chrono::steady_clock::now() - started, std::chrono::milliseconds(300));
+  EXPECT_EQ(diagnostic("motors"), "enabled");
+  const auto again = std::chrono::steady_clock::now();
+  call("motors", {{"enabled", true}});
+  EXPECT_LT(std::chrono::steady_clock::now() - again, std::chrono::milliseconds(300)) << "only the next op waits";
+}
+
 TEST_F(SimDriverTest, DisconnectDisablesTheMotors) {
   start();
   EXPECT_EQ(diagnostic("motors"), "enabled");
@@ -490,8 +585,8 @@ TEST_F(SimDriverTest, UnknownOpIsAnInvalidArgumentListingTheOps) {
   ASSERT_FALSE(result.ok());
   EXPECT_EQ(result.error().code, ErrorCode::kInvalidArgument);
   EXPECT_EQ(result.error().message,
-            R"(unknown op "levitate" (the sim driver has: stop_feedback, estop_input, disconnect, raise_fault, )"
-            R"(set_external_torque, set_imu, stall, slow_maintenance, command_latency, state))");
+            R"(unknown op "levitate" (the sim driver has: motors, stop_feedback, estop_input, disconnect, )"
+            R"(raise_fault, set_external_torque, set_imu, stall, slow_maintenance, command_latency, state))");
 }
 
 TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {
@@ -515,6 +610,7 @@ TEST_F(SimDriverTest, BadOpArgumentsAreInvalidArgumentsNamingOpAndExpectation) {
       {"disconnect", "[]", "disconnect: args: expected an object, got []"},
       {"disconnect", R"({"for_ms": -1})", "disconnect: args.for_ms: expected an integer in 0..600000, got -1"},
       {"slow_maintenance", R"({"ms": 0})", "slow_maintenance: args.ms: expected an integer in 1..60000, got 0"},
+      {"motors", "{}", "motors: args.enabled: missing; expected true or false"},
   };
   for (const auto& test_case : cases) {
     const Result<json> result = driver_.call(test_case.op, json::parse(test_case.args));

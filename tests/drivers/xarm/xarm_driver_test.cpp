@@ -147,6 +147,18 @@ TEST(XarmParams, DescribeTellsTheModelsJointsAndLimits) {
   EXPECT_DOUBLE_EQ(description.native_rate_hz, 250);
 }
 
+// The ops that act on the arm robotd drives need free motors: power, brakes, state and mode,
+// planned motion and motion limits. The queries, clean_war and save_conf do not.
+TEST(XarmParams, TheOpsThatActOnTheArmNeedFreeMotors) {
+  XarmDriver driver;
+  ASSERT_TRUE(driver.configure({{"model", "xarm6"}}));
+  EXPECT_EQ(testing::ops_needing_free_motors(driver.describe()),
+            (std::vector<std::string>{"motion_en", "set_state", "set_mode", "clean_err", "set_brake", "move_line",
+                                      "move_lineb", "move_joint", "move_gohome", "sleep_instruction", "set_tcp_jerk",
+                                      "set_tcp_maxacc", "set_joint_jerk", "set_joint_maxacc", "set_tcp_offset",
+                                      "clean_conf"}));
+}
+
 TEST(XarmConnect, NothingListeningIsNotAvailableAndNamesTheAddress) {
   const std::uint16_t port = XarmSimProcess::free_port();
   XarmDriver driver;

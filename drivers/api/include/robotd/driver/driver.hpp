@@ -26,7 +26,7 @@
 namespace robotd::driver {
 
 /// Bump when anything in this header or types.hpp changes layout or meaning.
-inline constexpr std::uint32_t kAbiVersion = 5;
+inline constexpr std::uint32_t kAbiVersion = 6;
 
 struct JointLimits {
   double position_min_rad = -3.14;
@@ -51,10 +51,14 @@ struct JointDescription {
 struct OpDescription {
   std::string name;
   std::string help;  // one line: what it does, its JSON arguments with units
-  /// The op powers, enables, disables, brakes, reboots or moves joints robotd drives: robotd
-  /// refuses it while a session holds any motor of the device, and grants no session while it runs.
+  /// The op powers, enables, disables, brakes, reboots, zeroes, moves or changes the mode of joints
+  /// robotd drives: robotd refuses it while a session holds any motor of the device, and grants no
+  /// session while it runs (docs/writing-a-driver.md, "Ops that act on the joints").
   bool needs_free_motors = false;
 };
+
+/// For a driver's op table: {"name", "help", kNeedsFreeMotors}.
+inline constexpr bool kNeedsFreeMotors = true;
 
 struct DeviceDescription {
   std::string model;

@@ -28,6 +28,23 @@ struct JointCommand {
   double kp = 0;  // N·m/rad
   double kd = 0;  // N·m·s/rad
   double torque_nm = 0;
+
+  /// Whether the motor works for robotd: a position to hold or track, or an impedance command
+  /// with any gain or torque (DAMPING included). False for kNone and for the all-zero impedance
+  /// command (ZERO_TORQUE), which let the joint go. An op that would let go of a joint (disable,
+  /// reboot) waits for this to be false: robotd holds such a joint after a session's KEEP or
+  /// DAMPING fallback, with nobody owning it.
+  bool holds() const noexcept {
+    switch (kind) {
+      case JointCommandKind::kNone:
+        return false;
+      case JointCommandKind::kPosition:
+        return true;
+      case JointCommandKind::kImpedance:
+        return kp != 0 || kd != 0 || torque_nm != 0;
+    }
+    return true;
+  }
 };
 
 /// What robotd asks of the device for one tick.
