@@ -50,7 +50,7 @@ ControlLoop::ControlLoop(driver::Driver& driver, const control::DeviceModel& mod
 void ControlLoop::run() noexcept {
   std::int64_t deadline = rt::monotonic_now_ns() + period_ns_;
   std::int64_t previous_wake = 0;
-  while (!finished_) {
+  while (!finished_.load(std::memory_order_relaxed)) {
     rt::sleep_until_ns(deadline);
     const std::int64_t wake = rt::monotonic_now_ns();
     tick(deadline, wake);
@@ -316,7 +316,7 @@ void ControlLoop::leave_safe_state_if_clear(std::int64_t now_ns) noexcept {
       // where it is measured.
       case JointMode::kTrack:
       case JointMode::kTorque:
-        control::hold_measured(joint, feedback_.joints[j], gains_for(j, nullptr));
+        control::hold_measured(joint, feedback_.joints[j], gains_for(j, nullptr), motion_limits_[j], dt_s_);
         break;
       case JointMode::kDamping:
         joint.mode = JointMode::kDamping;
@@ -457,7 +457,7 @@ void ControlLoop::take_feedback(std::int64_t now_ns) noexcept {
     reinit_pending_ = false;
     for (std::size_t j = 0; j < joint_count_; ++j) {
       if (joints_[j].mode == JointMode::kTrack)
-        control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr));
+        control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr), motion_limits_[j], dt_s_);
     }
   }
 }
@@ -478,7 +478,7 @@ void ControlLoop::update_shutdown(std::int64_t now_ns) noexcept {
       if (joints_[j].mode != JointMode::kIdle) set_behavior(j, settings_.shutdown_behavior, gains_for(j, nullptr));
     }
   }
-  if (now_ns - shutdown_started_ns_ >= settings_.shutdown_duration_ns) finished_ = true;
+  if (now_ns - shutdown_started_ns_ >= settings_.shutdown_duration_ns) finished_.store(true, std::memory_order_release);
 }
 
 // --- output ---------------------------------------------------------------------------------
@@ -511,7 +511,7 @@ void ControlLoop::write_command(std::int64_t deadline_ns, std::int64_t now_ns) n
 }
 
 DeviceState ControlLoop::current_state() const noexcept {
-  if (finished_) return DeviceState::kStopped;
+  if (finished_.load(std::memory_order_relaxed)) return DeviceState::kStopped;
   if (in_maintenance_) return DeviceState::kMaintenance;
   // A maintenance call that left the fault latched (a failed reconnect) leaves the device in
   // FAULT, not waiting for feedback that may never come.

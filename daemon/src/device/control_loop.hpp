@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 
 #include "control/device_model.hpp"
@@ -42,7 +43,7 @@ class ControlLoop {
   /// One tick at `now_ns` for the tick due at `deadline_ns`. Exposed so tests can drive the
   /// loop deterministically without a thread.
   void tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept;
-  bool finished() const noexcept { return finished_; }
+  bool finished() const noexcept { return finished_.load(std::memory_order_acquire); }
   std::uint64_t overruns() const noexcept { return overruns_; }
 
  private:
@@ -128,7 +129,7 @@ class ControlLoop {
   bool shutdown_requested_ = false;
   bool shutting_down_ = false;  // the shutdown stop is running (not before maintenance has let go)
   std::int64_t shutdown_started_ns_ = 0;
-  bool finished_ = false;
+  std::atomic<bool> finished_{false};  // read by whoever waits for the loop's end (Device::running)
   std::int64_t newest_sent_ns_ = 0;
 
   std::uint64_t tick_count_ = 0;
