@@ -584,10 +584,8 @@ std::optional<Violation> InvariantChecker::check_setpoint(const TickObservation&
       joint.hold_reach = (braking * braking + braking * a * dt_s_) / (2 * a) + 2 * quantum;
     };
     if (!joint.holding || started_here) {
-      // A hold that starts here brakes from the measured speed (a joint may still coast).
       begin_hold(started_here ? p : joint.previous_position,
-                 started_here ? std::min(std::fabs(joint.measured_velocity), limits.velocity_max_rad_s)
-                              : std::fabs(joint.previous_step) / dt_s_);
+                 started_here ? 0.0 : std::fabs(joint.previous_step) / dt_s_);
     }
     const bool coming_inside = outside(joint.previous_position) > 0 && outside(p) < outside(joint.previous_position);
     const bool speeding_up = !started_here && std::fabs(step) > std::fabs(joint.previous_step) + 1e-12;

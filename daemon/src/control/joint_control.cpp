@@ -31,13 +31,11 @@ void hold_position(JointControl& joint, const driver::JointFeedback& measured, G
   joint.torque_nm = 0;
 }
 
-void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains, const MotionLimits& limits,
-                   double dt_s) noexcept {
+void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains) noexcept {
   joint.mode = JointMode::kTrack;
   joint.track_kind = driver::JointCommandKind::kPosition;
-  joint.setpoint = LimiterState{measured.position_rad,
-                                velocity_within_limits(measured.velocity_rad_s, measured.position_rad, limits, dt_s)};
-  joint.target_position = braking_point(joint.setpoint, limits, dt_s);
+  joint.setpoint = LimiterState{measured.position_rad, 0};
+  joint.target_position = measured.position_rad;
   joint.target_velocity = 0;
   joint.extrapolate_ns = 0;
   joint.kp = gains.kp;

@@ -51,11 +51,8 @@ void begin_tracking(JointControl& joint, const driver::JointFeedback& measured, 
 void hold_position(JointControl& joint, const driver::JointFeedback& measured, Gains gains, const MotionLimits& limits,
                    double dt_s) noexcept;
 
-/// Stops from the measured position and speed and holds where that stop ends, discarding any
-/// previous target and setpoint (after e-stop, fault, recover, reconnect): a joint still coasting
-/// is braked within the limits, not pulled back to where it was when the hold began.
-void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains, const MotionLimits& limits,
-                   double dt_s) noexcept;
+/// Holds at the measured position, discarding any previous target (after e-stop, fault, recover).
+void hold_measured(JointControl& joint, const driver::JointFeedback& measured, Gains gains) noexcept;
 
 /// Applies a session's timeout / release behaviour, or the safe behaviour (already mapped to
 /// what the device can do), with `gains` (the damping gain for DAMPING, the holding gains for KEEP).

@@ -316,7 +316,7 @@ void ControlLoop::leave_safe_state_if_clear(std::int64_t now_ns) noexcept {
       // where it is measured.
       case JointMode::kTrack:
       case JointMode::kTorque:
-        control::hold_measured(joint, feedback_.joints[j], gains_for(j, nullptr), motion_limits_[j], dt_s_);
+        control::hold_measured(joint, feedback_.joints[j], gains_for(j, nullptr));
         break;
       case JointMode::kDamping:
         joint.mode = JointMode::kDamping;
@@ -457,7 +457,7 @@ void ControlLoop::take_feedback(std::int64_t now_ns) noexcept {
     reinit_pending_ = false;
     for (std::size_t j = 0; j < joint_count_; ++j) {
       if (joints_[j].mode == JointMode::kTrack)
-        control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr), motion_limits_[j], dt_s_);
+        control::hold_measured(joints_[j], feedback_.joints[j], gains_for(j, nullptr));
     }
   }
 }

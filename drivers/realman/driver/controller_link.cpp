@@ -413,6 +413,13 @@ void ControllerLink::stream(Clock::time_point now) {
   const StreamTarget target = target_read_;                                      // follow_estop() read it on this pass
   if (target.estop) return;
   const ArmFeedback& measured = latest_;
+  if (measured.fault.code != 0) {
+    // A controller in error rejects every frame and keeps the last one it took: streaming on
+    // would leave it behind, and the first frame after clear_system_err would be a jump from
+    // there (over-speed, in error again). Resume from where the arm is once it is clear.
+    streaming_ = false;
+    return;
+  }
   if (!target.active) {
     // The session ended or timed out while the arm was still on its way (low follow, filtering):
     // decelerate and stop on the path. Planned moves wait until it is at rest (stopping()).

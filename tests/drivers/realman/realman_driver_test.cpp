@@ -248,10 +248,11 @@ TEST_F(RealmanDriverTest, EstopSendsTheQuickStopAndAReleaseMidMotionTheSlowStop)
   loop.set_command(position_frame(target));
   ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return l.feedback().joints[0].position_rad < target[0] + 0.6; }));
   loop.set_command(position_frame(target, /*owned=*/false));
-  std::this_thread::sleep_for(50ms);
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) {
+    return sim_state()["commands"].value("set_arm_slow_stop", 0) == 1;
+  })) << sim_state().dump();
   const int frames_at_release = sim_state()["pass_through"]["frames"].get<int>();
   const double at_release = loop.feedback().joints[0].position_rad;
-  EXPECT_EQ(sim_state()["commands"].value("set_arm_slow_stop", 0), 1) << sim_state().dump();
   // A planned move right away waits for the slow stop to end instead of being cut short by it.
   const auto moved = driver_.call("movej", {{"joints_rad", {0.2, 0, 0, 0, 0, 0}}, {"v", 80}});
   ASSERT_TRUE(moved) << moved.error().message;
