@@ -162,7 +162,12 @@ TEST_F(LifecycleTest, JointLimitOverridesNarrowTheDriverLimitsButMayNotWidenThem
 
 TEST_F(LifecycleTest, LoopTimingReportsTheWindowAndItsSamplesAndResets) {
   start_robotd();
-  std::this_thread::sleep_for(300ms);
+  // The window fills at 1 kHz from the loop's start, which a slow (sanitized) start-up delays.
+  for (const auto give_up = std::chrono::steady_clock::now() + 10s; std::chrono::steady_clock::now() < give_up;) {
+    const auto filling = client().device_call("arm", "loop_timing");
+    if (filling && nlohmann::json::parse(filling.value())["window_ticks"].get<int>() > 250) break;
+    std::this_thread::sleep_for(50ms);
+  }
   auto timing = client().device_call("arm", "loop_timing", R"({"samples": true, "reset": true})");
   ASSERT_TRUE(timing) << timing.error().message;
   const auto first = nlohmann::json::parse(timing.value());

@@ -207,6 +207,10 @@ TEST_F(SafetyTest, ReconnectAttemptsBackOffWhileTheLinkStaysDown) {
       sim_arm_config(domain_.id(), nullptr, {{"reconnect_interval_ms", 100}, {"reconnect_max_interval_ms", 800}}));
   ASSERT_TRUE(client().device_call("arm", "disconnect", R"({"for_ms": 2500})"));
   const auto lost_at = std::chrono::steady_clock::now();
+  bool lost = false;  // first the loop must see the link go (a slow build may answer before it has)
+  while (!lost && std::chrono::steady_clock::now() - lost_at < 2s)
+    lost = device_status().state != DeviceState::kRunning;
+  ASSERT_TRUE(lost) << "robotd never saw the link go";
   bool back = false;
   while (!back && std::chrono::steady_clock::now() - lost_at < 6s)
     back = device_status().state == DeviceState::kRunning;
