@@ -348,33 +348,28 @@ def parol6_maintenance(robotd_module, programs, domain, target, count):
     return {"parol6_recover": repeat(count, silent_recover)}
 
 
+def recover_with_a_dropped_reply(robotd_module, target, raise_error, name, count):
+    """A controller error; recover's clear-error takes effect but its reply is dropped, so
+    recover waits for it."""
+    sim = target.sim
+
+    def waiting_recover():
+        sim.control(raise_error)
+        target.wait_state(robotd_module.DeviceState.FAULT)
+        sample = recover_sample(target, lambda: sim.control({"op": "drop_replies", "count": 1}))
+        recover_until_running(target)
+        return sample
+
+    return {name: repeat(count, waiting_recover)}
+
+
 def realman_maintenance(robotd_module, programs, domain, target, count):
-    # A controller error; recover's clear_system_err takes effect but its reply is dropped, so
-    # recover waits for it.
-    sim = target.sim
-
-    def waiting_recover():
-        sim.control({"op": "raise_error", "code": 0x5001})
-        target.wait_state(robotd_module.DeviceState.FAULT)
-        sample = recover_sample(target, lambda: sim.control({"op": "drop_replies", "count": 1}))
-        recover_until_running(target)
-        return sample
-
-    return {"realman_recover": repeat(count, waiting_recover)}
+    return recover_with_a_dropped_reply(robotd_module, target, {"op": "raise_error", "code": 0x5001},
+                                        "realman_recover", count)
 
 
-def xarm_maintenance(robotd_module, programs, domain, target, count):
-    # A controller error (C31 collision); recover's clean_err takes effect but its reply is dropped.
-    sim = target.sim
-
-    def waiting_recover():
-        sim.control({"op": "error", "code": 31})
-        target.wait_state(robotd_module.DeviceState.FAULT)
-        sample = recover_sample(target, lambda: sim.control({"op": "drop_replies", "count": 1}))
-        recover_until_running(target)
-        return sample
-
-    return {"xarm_recover": repeat(count, waiting_recover)}
+def xarm_maintenance(robotd_module, programs, domain, target, count):  # C31: a collision
+    return recover_with_a_dropped_reply(robotd_module, target, {"op": "error", "code": 31}, "xarm_recover", count)
 
 
 def hightorque_maintenance(robotd_module, programs, domain, target, count):
