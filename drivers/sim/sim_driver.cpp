@@ -164,6 +164,11 @@ IoResult SimDriver::write(const CommandFrame& command, FaultInfo& fault) noexcep
   const IoResult status = injected_link_status(fault);
   if (status == IoResult::kDisconnected) return status;
   command_ = command;
+  // A motor latches its target where the target was meant when it was written: a zero reset
+  // afterwards changes what it reports, not where it holds.
+  for (std::size_t i = 0; i < params_.joints.size(); ++i) {
+    rt_command_zero_offset_rad_[i] = zero_offset_rad_[i].load(std::memory_order_relaxed);
+  }
   const auto joints = std::span(command.joints).first(std::min(command.joint_count, params_.joints.size()));
   // A session taking a joint enables the motors, as the PiPER and xArm drivers do by default.
   if (std::any_of(joints.begin(), joints.end(), [](const JointCommand& joint) { return joint.owned; })) {
@@ -236,7 +241,8 @@ void SimDriver::advance_physics(std::int64_t now_ns) noexcept {
     const JointCommand command = i < command_.joint_count ? command_.joints[i] : JointCommand{};
     MotorLaw law;  // disabled motors apply no torque
     if (powered)
-      law = damp_all ? MotorLaw{.kd = joint.default_kd} : commanded_motor_law(joint, command, zero_offset_rad);
+      law = damp_all ? MotorLaw{.kd = joint.default_kd}
+                     : commanded_motor_law(joint, command, rt_command_zero_offset_rad_[i]);
     const JointPhysics physics{.inertia_kg_m2 = joint.inertia_kg_m2,
                                .damping_nm_s_rad = joint.damping_nm_s_rad,
                                .position_min_rad = joint.limits.position_min_rad + zero_offset_rad,

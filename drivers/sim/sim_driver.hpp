@@ -171,6 +171,7 @@ class SimDriver final : public driver::Driver {
   // RT thread only.
   std::array<JointState, driver::kMaxJoints> joints_{};
   driver::CommandFrame command_{};
+  std::array<double, driver::kMaxJoints> rt_command_zero_offset_rad_{};  // each joint's zero when command_ came
   InjectedFaults rt_injected_faults_{};
   SimSnapshot rt_snapshot_{};
   driver::ImuSample rt_imu_{};

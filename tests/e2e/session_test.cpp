@@ -120,6 +120,10 @@ void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::strin
   ASSERT_EQ(uuid_line->rfind("uuid ", 0), 0U) << *uuid_line;
   const std::string session = uuid_line->substr(uuid_line->find(" session ") + 9);
   std::this_thread::sleep_for(300ms);  // streaming at 1 kHz
+  auto streaming = client().session_status(1s);
+  ASSERT_TRUE(streaming);
+  ASSERT_EQ(streaming.value().sessions.size(), 1U)
+      << "the streamer's commands did not keep session " << session << " alive for its " << kTimeoutMs << " ms timeout";
 
   const auto killed_at = std::chrono::steady_clock::now();
   streamer.kill_hard();

@@ -90,6 +90,8 @@ Result<Session> Client::request_control(const SessionRequest& request) {
   auto response = core_->request_control.call(wire_request, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/request_control", response.value().message);
+  // The session's timeout runs from now: its first commands must not be lost to discovery.
+  core_->await_command_subscriber(core_->options.service_timeout);
   return Session(core_, std::move(response.value()), request);
 }
 

@@ -1,5 +1,7 @@
 #include "client_core.hpp"
 
+#include <thread>
+
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
 
@@ -56,6 +58,15 @@ Result<std::shared_ptr<ClientCore>> ClientCore::create(const ClientOptions& opti
   }
   core->dispatcher = std::make_shared<Dispatcher>(core->participant);
   return core;
+}
+
+void ClientCore::await_command_subscriber(std::chrono::milliseconds timeout) const {
+  const auto* writer = commands.get();
+  if (writer == nullptr) return;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (writer->matched_readers() == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 }  // namespace robotd::detail

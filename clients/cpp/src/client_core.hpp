@@ -2,6 +2,7 @@
 // writer and the dispatch thread.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string_view>
@@ -33,6 +34,10 @@ class ClientCore {
         owned);
     return Subscription([dispatcher = dispatcher, id] { dispatcher->remove(id); });
   }
+
+  /// Waits until the command writer has matched a subscriber (robotd's command reader), at most
+  /// `timeout`. Commands written before discovery matched the two are not delivered.
+  void await_command_subscriber(std::chrono::milliseconds timeout) const;
 
   ClientOptions options;
   wire::Participant participant;

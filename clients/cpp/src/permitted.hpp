@@ -29,6 +29,8 @@ class Permitted {
     if (!endpoint_) return denied_;
     return endpoint_->write(sample);
   }
+  /// The endpoint, or null if DDS Security does not permit it.
+  const Endpoint* get() const { return endpoint_.get(); }
 
  private:
   std::unique_ptr<Endpoint> endpoint_;

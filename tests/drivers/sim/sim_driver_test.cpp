@@ -460,6 +460,20 @@ TEST_F(SimDriverTest, ResetZeroMakesAJointReadZeroWhereItStands) {
   EXPECT_NEAR(feedback_.joints[2].position_rad, 0, 1e-6);
 }
 
+// robotd stops writing while reset_zero runs (maintenance): the target written before it still
+// means where it was meant, so the joint holds still, and only reads differently.
+TEST_F(SimDriverTest, ResetZeroLeavesAHeldJointWhereItStands) {
+  start();
+  CommandFrame frame = position_frame(0);
+  frame.joints[1].position_rad = 0.3;
+  run(frame, 1.0);
+  ASSERT_TRUE(driver_.reset_zero({}).ok());
+  for (int tick = 0; tick < 500; ++tick) {
+    ASSERT_EQ(read(), IoResult::kOk);
+    ASSERT_NEAR(feedback_.joints[1].position_rad, 0, 1e-3) << "tick " << tick;
+  }
+}
+
 TEST_F(SimDriverTest, ResetZeroOfNoListedJointsZeroesEveryJoint) {
   start();
   run(position_frame(-0.6), 1.0);

@@ -37,6 +37,9 @@ class Client {
 
   // Services. Each waits at most options().service_timeout.
   Result<std::vector<DeviceInfo>> list_devices();
+  /// Returns once robotd has granted the session and discovery has matched this client's command
+  /// writer with a subscriber (robotd's command reader; at most the service timeout more), so that
+  /// the first commands are not lost while the session's timeout runs.
   Result<Session> request_control(const SessionRequest& request);
   Result<ReleaseControlResponse> release_control(const std::string& uuid, Behavior release_mode);
   Result<GetAvailableMotorsResponse> available_motors(const std::string& device = "");
