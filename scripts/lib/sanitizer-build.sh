@@ -15,5 +15,7 @@ configure_sanitizer_build() {
     tsan) options=(-DROBOTD_SANITIZE=thread) ;;
     *) echo "configure_sanitizer_build: unknown kind '$kind' (expected asan or tsan)" >&2; return 2 ;;
   esac
-  cmake -S . -B "$build_dir" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DROBOTD_WERROR=ON "${options[@]}"
+  # A unity build, as CI's main stage (scripts/test).
+  cmake -S . -B "$build_dir" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DROBOTD_WERROR=ON \
+    -DCMAKE_UNITY_BUILD=ON "${options[@]}"
 }

@@ -7,12 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include "loop_tick.hpp"
+
 namespace robotd::control {
 namespace {
 
 using driver::JointCommandKind;
 
-constexpr double kDt = 0.001;
 constexpr std::int64_t kMsNs = 1'000'000;
 
 driver::JointFeedback measured(double position, double velocity = 0.0) {

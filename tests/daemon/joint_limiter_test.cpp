@@ -7,10 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include "loop_tick.hpp"
+
 namespace robotd::control {
 namespace {
 
-constexpr double kDt = 0.001;       // 1 kHz loop
 constexpr double kEpsilon = 1e-12;  // floating-point slack on the bounds
 
 MotionLimits limits(double velocity_max = 1.0, double acceleration_max = 5.0, double position_min = -10.0,

@@ -18,10 +18,10 @@ json with_joystick(const json& joystick) {
   return json{{"devices", json::array({json{{"name", "arm"}, {"driver", "sim"}}})}, {"joystick", joystick}};
 }
 
-Result<Config> parse(const json& document) { return parse_config(document.dump(), "test.json"); }
+Result<Config> parse_document(const json& document) { return parse_config(document.dump(), "test.json"); }
 
-std::string errors_of(const json& joystick) {
-  const Result<Config> result = parse(with_joystick(joystick));
+std::string joystick_errors(const json& joystick) {
+  const Result<Config> result = parse_document(with_joystick(joystick));
   if (result.ok()) {
     ADD_FAILURE() << "config was accepted: " << joystick.dump();
     return "";
@@ -30,13 +30,13 @@ std::string errors_of(const json& joystick) {
 }
 
 TEST(JoystickConfig, AbsentSectionMeansNoJoystick) {
-  const auto config = parse(json{{"devices", json::array({json{{"name", "arm"}, {"driver", "sim"}}})}});
+  const auto config = parse_document(json{{"devices", json::array({json{{"name", "arm"}, {"driver", "sim"}}})}});
   ASSERT_TRUE(config.ok()) << config.error().message;
   EXPECT_FALSE(config.value().joystick.has_value());
 }
 
 TEST(JoystickConfig, EmptySectionIsTheXboxPadOnJs0AtFiftyHertz) {
-  const auto config = parse(with_joystick(json::object()));
+  const auto config = parse_document(with_joystick(json::object()));
   ASSERT_TRUE(config.ok()) << config.error().message;
   const joystick::JoystickConfig& joy = *config.value().joystick;
   EXPECT_EQ(joy.device, "/dev/input/js0");
@@ -50,20 +50,20 @@ TEST(JoystickConfig, EmptySectionIsTheXboxPadOnJs0AtFiftyHertz) {
 }
 
 TEST(JoystickConfig, DisabledSectionMeansNoJoystick) {
-  const auto config = parse(with_joystick(json{{"enabled", false}}));
+  const auto config = parse_document(with_joystick(json{{"enabled", false}}));
   ASSERT_TRUE(config.ok()) << config.error().message;
   EXPECT_FALSE(config.value().joystick.has_value());
 }
 
 TEST(JoystickConfig, EvdevMappingTakesCodeNamesAndRanges) {
-  const auto config =
-      parse(with_joystick(json{{"interface", "evdev"},
-                               {"device", "/dev/input/event7"},
-                               {"mapping",
-                                {{"lt", {{"axis", "ABS_BRAKE"}, {"min", 0}, {"max", 1023}}},
-                                 {"a", {{"button", "BTN_SOUTH"}}},
-                                 {"dpad_horizontal", {{"buttons", json::array({"BTN_DPAD_RIGHT", "BTN_DPAD_LEFT"})}}},
-                                 {"center", nullptr}}}}));
+  const auto config = parse_document(
+      with_joystick(json{{"interface", "evdev"},
+                         {"device", "/dev/input/event7"},
+                         {"mapping",
+                          {{"lt", {{"axis", "ABS_BRAKE"}, {"min", 0}, {"max", 1023}}},
+                           {"a", {{"button", "BTN_SOUTH"}}},
+                           {"dpad_horizontal", {{"buttons", json::array({"BTN_DPAD_RIGHT", "BTN_DPAD_LEFT"})}}},
+                           {"center", nullptr}}}}));
   ASSERT_TRUE(config.ok()) << config.error().message;
   const auto& mapping = config.value().joystick->mapping;
   EXPECT_EQ(mapping[2].code, ABS_BRAKE);
@@ -76,44 +76,46 @@ TEST(JoystickConfig, EvdevMappingTakesCodeNamesAndRanges) {
 }
 
 TEST(JoystickConfig, TopicMayBeGivenAsAnAbsoluteRosName) {
-  const auto config = parse(with_joystick(json{{"topic", "/hightorque_joy"}}));
+  const auto config = parse_document(with_joystick(json{{"topic", "/hightorque_joy"}}));
   ASSERT_TRUE(config.ok()) << config.error().message;
   EXPECT_EQ(config.value().joystick->topic, "hightorque_joy");
 }
 
 TEST(JoystickConfig, TopicWithSpacesIsRefused) {
-  EXPECT_THAT(errors_of(json{{"topic", "my joy"}}), HasSubstr("joystick.topic: expected a ROS topic name"));
+  EXPECT_THAT(joystick_errors(json{{"topic", "my joy"}}), HasSubstr("joystick.topic: expected a ROS topic name"));
 }
 
 TEST(JoystickConfig, EvdevWithoutDeviceIsRefused) {
-  EXPECT_THAT(errors_of(json{{"interface", "evdev"}}), HasSubstr("joystick.device: missing"));
+  EXPECT_THAT(joystick_errors(json{{"interface", "evdev"}}), HasSubstr("joystick.device: missing"));
 }
 
 TEST(JoystickConfig, UnknownInterfaceListsTheChoices) {
-  EXPECT_THAT(errors_of(json{{"interface", "hid"}}),
+  EXPECT_THAT(joystick_errors(json{{"interface", "hid"}}),
               HasSubstr("joystick.interface: expected one of \"js\", \"evdev\""));
 }
 
 TEST(JoystickConfig, BadAxisIsNamedWithItsPath) {
-  EXPECT_THAT(errors_of(json{{"mapping", {{"lt", {{"axis", "ABS_Z"}}}}}}),
+  EXPECT_THAT(joystick_errors(json{{"mapping", {{"lt", {{"axis", "ABS_Z"}}}}}}),
               HasSubstr("joystick.mapping.lt.axis: expected a js axis number 0..255"));
 }
 
 TEST(JoystickConfig, UnknownMappingFieldIsNamedWithItsPath) {
-  EXPECT_THAT(errors_of(json{{"mapping", {{"l_trigger", {{"axis", 2}}}}}}), HasSubstr("joystick.mapping.l_trigger"));
+  EXPECT_THAT(joystick_errors(json{{"mapping", {{"l_trigger", {{"axis", 2}}}}}}),
+              HasSubstr("joystick.mapping.l_trigger"));
 }
 
 TEST(JoystickConfig, ButtonFieldNeedsAButton) {
-  EXPECT_THAT(errors_of(json{{"mapping", {{"a", {{"axis", 2}}}}}}), HasSubstr("joystick.mapping.a.button: missing"));
+  EXPECT_THAT(joystick_errors(json{{"mapping", {{"a", {{"axis", 2}}}}}}),
+              HasSubstr("joystick.mapping.a.button: missing"));
 }
 
 TEST(JoystickConfig, RawRangeIsForEvdevOnly) {
-  EXPECT_THAT(errors_of(json{{"mapping", {{"lt", {{"axis", 2}, {"min", 0}, {"max", 255}}}}}}),
+  EXPECT_THAT(joystick_errors(json{{"mapping", {{"lt", {{"axis", 2}, {"min", 0}, {"max", 255}}}}}}),
               HasSubstr("joystick.mapping.lt.min: a raw range is for evdev axes only"));
 }
 
 TEST(JoystickConfig, DeadzoneAboveNinetyPercentIsOutOfRange) {
-  EXPECT_THAT(errors_of(json{{"deadzone", 0.95}}), HasSubstr("joystick.deadzone: expected a number"));
+  EXPECT_THAT(joystick_errors(json{{"deadzone", 0.95}}), HasSubstr("joystick.deadzone: expected a number"));
 }
 
 }  // namespace

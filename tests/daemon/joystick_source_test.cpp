@@ -23,7 +23,7 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-constexpr std::int16_t kFull = 32767;
+constexpr std::int16_t kAxisFull = 32767;
 
 js_event js(std::uint32_t time_ms, std::uint8_t type, std::uint8_t number, std::int16_t value) {
   return js_event{.time = time_ms, .value = value, .type = type, .number = number};
@@ -127,7 +127,7 @@ TEST_F(JoystickSourceTest, EventsFromTheDeviceArePublishedOnChange) {
   const int fd = open(path_.c_str(), O_WRONLY);  // blocks until the source has opened it
   ASSERT_GE(fd, 0);
   write_events(fd, {js(0, JS_EVENT_BUTTON | JS_EVENT_INIT, 0, 0), js(0, JS_EVENT_AXIS | JS_EVENT_INIT, 1, 0),
-                    js(10, JS_EVENT_AXIS, 1, -kFull), js(20, JS_EVENT_BUTTON, 0, 1)});
+                    js(10, JS_EVENT_AXIS, 1, -kAxisFull), js(20, JS_EVENT_BUTTON, 0, 1)});
   EXPECT_TRUE(published_.wait_for([](const Joy& joy) { return joy.l_vertical == 1.0F && joy.a == 1.0F; }, 0, 2s));
   close(fd);
 }
@@ -137,7 +137,7 @@ TEST_F(JoystickSourceTest, UnpluggedDeviceGivesANeutralSampleAndIsReopened) {
   start();
   int fd = open(path_.c_str(), O_WRONLY);
   ASSERT_GE(fd, 0);
-  write_events(fd, {js(0, JS_EVENT_AXIS, 0, -kFull)});
+  write_events(fd, {js(0, JS_EVENT_AXIS, 0, -kAxisFull)});
   const auto pushed = published_.wait_for([](const Joy& joy) { return joy.l_horizontal == 1.0F; }, 0, 2s);
   ASSERT_TRUE(pushed);
   close(fd);  // the writer goes: an unplug

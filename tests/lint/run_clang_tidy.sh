@@ -26,6 +26,24 @@ command -v "$clang_tidy" >/dev/null || { echo "SKIP: $clang_tidy not found" >&2;
 [[ -f $build/compile_commands.json ]] ||
   { echo "FAIL: $build/compile_commands.json missing (configure with CMAKE_EXPORT_COMPILE_COMMANDS=ON)"; exit 1; }
 
+# A unity build's compile_commands.json names its unity sources, not the project's files: clang-tidy
+# then reads a per-file database of its own, configured beside the build with the same compilers
+# and flags (and its generated IDL headers, which the compile commands include).
+if grep -q '/Unity/unity_' "$build/compile_commands.json"; then
+  cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
+  build_type=$(cache_value CMAKE_BUILD_TYPE)
+  type_flags=$(tr '[:lower:]' '[:upper:]' <<<"$build_type")
+  db=$build/lint-compile-db
+  echo "unity build: configuring a per-file compile database in $db"
+  cmake -S "$src" -B "$db" -DCMAKE_UNITY_BUILD=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+    -DCMAKE_C_COMPILER="$(cache_value CMAKE_C_COMPILER)" -DCMAKE_CXX_COMPILER="$(cache_value CMAKE_CXX_COMPILER)" \
+    -DCMAKE_BUILD_TYPE="$build_type" -DROBOTD_WERROR="$(cache_value ROBOTD_WERROR)" \
+    -DCMAKE_CXX_FLAGS_"$type_flags"="$(cache_value CMAKE_CXX_FLAGS_"$type_flags")" >"$db.log" 2>&1 &&
+    cmake --build "$db" --target robotd_msgs_generated >>"$db.log" 2>&1 ||
+    { cat "$db.log"; echo "FAIL: could not configure $db"; exit 1; }
+  build=$db
+fi
+
 mapfile -t files < <(python3 - "$src" "$build" <<'PY'
 import json, os, sys
 src, build = sys.argv[1], sys.argv[2]

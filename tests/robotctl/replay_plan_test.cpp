@@ -16,7 +16,7 @@ namespace {
 using testing::position_command;
 using testing::TemporaryPath;
 
-constexpr std::int64_t kMs = 1'000'000;
+constexpr std::int64_t kNsPerMs = 1'000'000;
 
 // The device as robotd describes it now: the recorded arm, with `position_max` and `velocity_max`.
 robotd::DeviceInfo current_arm(double position_max = 1.0, double velocity_max = 1.0) {
@@ -44,12 +44,12 @@ class ReplayPlanTest : public ::testing::Test {
   // Motor 0 from 0 to `end_rad` in 10 ms steps over one second; motor 1 stays at 0.
   void ramp(double end_rad) {
     for (int i = 0; i <= 100; ++i) {
-      command(i * (10 * kMs), position_command({0, 1}, {static_cast<float>(end_rad * i / 100.0), 0.0F}));
+      command(i * (10 * kNsPerMs), position_command({0, 1}, {static_cast<float>(end_rad * i / 100.0), 0.0F}));
     }
   }
 
   robotd::Result<ReplayPlan> plan(const std::vector<std::int32_t>& motor_ids = {}, const std::string& device = "arm") {
-    EXPECT_TRUE(writer_->finish(2000 * kMs));
+    EXPECT_TRUE(writer_->finish(2000 * kNsPerMs));
     auto reader = RecordingReader::open(path_.str());
     if (!reader) return reader.error();
     return read_replay_plan(reader.value(), device, motor_ids);
@@ -60,12 +60,12 @@ class ReplayPlanTest : public ::testing::Test {
 };
 
 TEST_F(ReplayPlanTest, PositionCommandsOfTheDeviceBecomeStepsAtTheirRecordedTimes) {
-  command(5 * kMs, position_command({0, 1}, {0.1F, 0.2F}));
-  command(15 * kMs, position_command({1}, {0.3F}));
+  command(5 * kNsPerMs, position_command({0, 1}, {0.1F, 0.2F}));
+  command(15 * kNsPerMs, position_command({1}, {0.3F}));
   const auto replay = plan();
   ASSERT_TRUE(replay) << replay.error().message;
   ASSERT_EQ(replay.value().steps.size(), 2U);
-  EXPECT_EQ(replay.value().steps[1].time_ns, 15 * kMs);
+  EXPECT_EQ(replay.value().steps[1].time_ns, 15 * kNsPerMs);
   EXPECT_EQ(replay.value().steps[1].motor_ids, (std::vector<std::int32_t>{1}));
   EXPECT_EQ(replay.value().motor_ids, (std::vector<std::int32_t>{0, 1}));
   EXPECT_EQ(replay.value().start_rad, (std::vector<double>{0.1F, 0.2F}));
@@ -74,8 +74,8 @@ TEST_F(ReplayPlanTest, PositionCommandsOfTheDeviceBecomeStepsAtTheirRecordedTime
 }
 
 TEST_F(ReplayPlanTest, KeepalivesAreCountedNotReplayed) {
-  command(1 * kMs, position_command({0}, {0.1F}));
-  command(2 * kMs, position_command({}, {}));
+  command(1 * kNsPerMs, position_command({0}, {0.1F}));
+  command(2 * kNsPerMs, position_command({}, {}));
   const auto replay = plan();
   ASSERT_TRUE(replay);
   EXPECT_EQ(replay.value().steps.size(), 1U);
@@ -83,7 +83,7 @@ TEST_F(ReplayPlanTest, KeepalivesAreCountedNotReplayed) {
 }
 
 TEST_F(ReplayPlanTest, MotorsOptionKeepsOnlyThoseMotors) {
-  command(1 * kMs, position_command({0, 1}, {0.1F, 0.2F}));
+  command(1 * kNsPerMs, position_command({0, 1}, {0.1F, 0.2F}));
   const auto replay = plan({1});
   ASSERT_TRUE(replay);
   EXPECT_EQ(replay.value().motor_ids, (std::vector<std::int32_t>{1}));
@@ -91,7 +91,7 @@ TEST_F(ReplayPlanTest, MotorsOptionKeepsOnlyThoseMotors) {
 }
 
 TEST_F(ReplayPlanTest, MotorTheRecordingNeverCommandsIsRefused) {
-  command(1 * kMs, position_command({0}, {0.1F}));
+  command(1 * kNsPerMs, position_command({0}, {0.1F}));
   const auto replay = plan({0, 1});
   ASSERT_FALSE(replay);
   EXPECT_NE(replay.error().message.find("no position command for motor 1"), std::string::npos)
@@ -99,10 +99,10 @@ TEST_F(ReplayPlanTest, MotorTheRecordingNeverCommandsIsRefused) {
 }
 
 TEST_F(ReplayPlanTest, TorqueCommandsAreRefusedSayingReplayIsPositionOnly) {
-  command(1 * kMs, position_command({0}, {0.1F}));
+  command(1 * kNsPerMs, position_command({0}, {0.1F}));
   ControlCommandRecord mixed = position_command({0}, {0.1F});
   mixed.values.torques = {0.5F};
-  command(250 * kMs, mixed);
+  command(250 * kNsPerMs, mixed);
   const auto replay = plan();
   ASSERT_FALSE(replay);
   EXPECT_NE(replay.error().message.find("1 commands for 'arm' carry torques"), std::string::npos)
@@ -112,7 +112,7 @@ TEST_F(ReplayPlanTest, TorqueCommandsAreRefusedSayingReplayIsPositionOnly) {
 }
 
 TEST_F(ReplayPlanTest, DeviceTheRecordingDoesNotHaveIsRefusedListingWhatItHas) {
-  command(1 * kMs, position_command({0}, {0.1F}));
+  command(1 * kNsPerMs, position_command({0}, {0.1F}));
   const auto replay = plan({}, "gripper");
   ASSERT_FALSE(replay);
   EXPECT_NE(replay.error().message.find("recorded no device 'gripper' (it recorded 'arm')"), std::string::npos)
@@ -128,17 +128,17 @@ TEST_F(ReplayPlanTest, RecordingWithoutCommandsIsRefused) {
 }
 
 TEST_F(ReplayPlanTest, CommandsOfOtherDevicesAreLeftOut) {
-  command(1 * kMs, position_command({0}, {0.1F}));
+  command(1 * kNsPerMs, position_command({0}, {0.1F}));
   ControlCommandRecord unknown = position_command({0}, {0.9F});
   unknown.device = kUnknownDevice;
-  command(2 * kMs, unknown);
+  command(2 * kNsPerMs, unknown);
   const auto replay = plan();
   ASSERT_TRUE(replay);
   EXPECT_EQ(replay.value().steps.size(), 1U);
 }
 
 TEST_F(ReplayPlanTest, CommandWithoutOnePositionPerMotorIsRefused) {
-  command(1 * kMs, position_command({0, 1}, {0.1F}));
+  command(1 * kNsPerMs, position_command({0, 1}, {0.1F}));
   const auto replay = plan();
   ASSERT_FALSE(replay);
   EXPECT_NE(replay.error().message.find("has 1 positions for 2 motor ids"), std::string::npos)
@@ -173,9 +173,9 @@ TEST_F(ReplayPlanTest, SpeedScalesDurationAndVelocity) {
 
 TEST_F(ReplayPlanTest, PositionBeyondTheLimitIsOneViolationPerRunWithTheWorstValue) {
   ramp(0.5);
-  command(1100 * kMs, position_command({0}, {1.2F}));
-  command(1200 * kMs, position_command({0}, {1.4F}));
-  command(1300 * kMs, position_command({0}, {0.9F}));
+  command(1100 * kNsPerMs, position_command({0}, {1.2F}));
+  command(1200 * kNsPerMs, position_command({0}, {1.4F}));
+  command(1300 * kNsPerMs, position_command({0}, {0.9F}));
   const auto replay = plan();
   ASSERT_TRUE(replay);
   const ReplayCheck check = check_replay(replay.value(), current_arm(1.0, 10.0), 1.0);
@@ -188,7 +188,7 @@ TEST_F(ReplayPlanTest, PositionBeyondTheLimitIsOneViolationPerRunWithTheWorstVal
 }
 
 TEST_F(ReplayPlanTest, PositionBelowTheMinimumIsAViolation) {
-  command(1 * kMs, position_command({1}, {-2.0F}));
+  command(1 * kNsPerMs, position_command({1}, {-2.0F}));
   const auto replay = plan();
   ASSERT_TRUE(replay);
   const ReplayCheck check = check_replay(replay.value(), current_arm(), 1.0);
@@ -202,7 +202,7 @@ TEST_F(ReplayPlanTest, JitterOfSingleCommandsIsNotSpeed) {
   // 0.5 rad/s, but two commands arrived 0.1 ms apart: over one such pair it would look like 50 rad/s.
   for (int i = 0; i <= 100; ++i) {
     const std::int64_t jitter_ns = i == 50 ? 9'900'000 : 0;
-    command(i * (10 * kMs) - jitter_ns, position_command({0}, {static_cast<float>(0.005 * i)}));
+    command(i * (10 * kNsPerMs) - jitter_ns, position_command({0}, {static_cast<float>(0.005 * i)}));
   }
   const auto replay = plan();
   ASSERT_TRUE(replay);
@@ -221,29 +221,29 @@ TEST_F(ReplayPlanTest, SendersStampsPaceTheReplayWhenEveryCommandHasThem) {
   // Sent every 10 ms at 0.5 rad/s, received in bursts of five by a busy recorder.
   constexpr std::int64_t kSentAt = 1'700'000'000'000'000'000;
   for (int i = 0; i <= 100; ++i) {
-    command((i / 5) * (50 * kMs), stamped(kSentAt + i * (10 * kMs), static_cast<float>(0.005 * i)));
+    command((i / 5) * (50 * kNsPerMs), stamped(kSentAt + i * (10 * kNsPerMs), static_cast<float>(0.005 * i)));
   }
   const auto replay = plan();
   ASSERT_TRUE(replay);
   EXPECT_EQ(replay.value().pace_clock, PaceClock::kSenderStamps);
-  EXPECT_EQ(replay.value().steps[7].pace_ns, 70 * kMs);
-  EXPECT_EQ(replay.value().steps[7].time_ns, 50 * kMs);
+  EXPECT_EQ(replay.value().steps[7].pace_ns, 70 * kNsPerMs);
+  EXPECT_EQ(replay.value().steps[7].time_ns, 50 * kNsPerMs);
   EXPECT_DOUBLE_EQ(replay.value().recorded_duration_s(), 1.0);
   const ReplayCheck check = check_replay(replay.value(), current_arm(), 1.0);
   EXPECT_NEAR(check.motors[0].peak_velocity_rad_s, 0.5, 1e-3);
 }
 
 TEST_F(ReplayPlanTest, StampsThatGoBackLeaveTheReceiveTimesAsThePace) {
-  command(10 * kMs, stamped(2'000 * kMs, 0.1F));
-  command(20 * kMs, stamped(1'000 * kMs, 0.2F));  // another sender, whose clock is behind
+  command(10 * kNsPerMs, stamped(2'000 * kNsPerMs, 0.1F));
+  command(20 * kNsPerMs, stamped(1'000 * kNsPerMs, 0.2F));  // another sender, whose clock is behind
   const auto replay = plan();
   ASSERT_TRUE(replay);
   EXPECT_EQ(replay.value().pace_clock, PaceClock::kReceiveTimes);
-  EXPECT_EQ(replay.value().steps[1].pace_ns, 10 * kMs);
+  EXPECT_EQ(replay.value().steps[1].pace_ns, 10 * kNsPerMs);
 }
 
 TEST_F(ReplayPlanTest, OtherJointCountNamesAndMissingMotorsAreViolations) {
-  command(1 * kMs, position_command({0, 1}, {0.0F, 0.0F}));
+  command(1 * kNsPerMs, position_command({0, 1}, {0.0F, 0.0F}));
   const auto replay = plan();
   ASSERT_TRUE(replay);
   robotd::DeviceInfo one_joint;
@@ -259,8 +259,8 @@ TEST_F(ReplayPlanTest, OtherJointCountNamesAndMissingMotorsAreViolations) {
 }
 
 TEST_F(ReplayPlanTest, TruncatedRecordingIsPlannedUpToItsLastCompleteRecordAndSaysSo) {
-  command(1 * kMs, position_command({0}, {0.1F}));
-  command(2 * kMs, position_command({0}, {0.2F}));
+  command(1 * kNsPerMs, position_command({0}, {0.1F}));
+  command(2 * kNsPerMs, position_command({0}, {0.2F}));
   ASSERT_TRUE(writer_->flush());
   std::filesystem::resize_file(path_.str(), testing::file_size(path_.str()) - 3);
   auto reader = RecordingReader::open(path_.str());

@@ -9,9 +9,6 @@
 namespace robotd::safety {
 namespace {
 
-constexpr std::int64_t kPeriodNs = 1'000'000;  // 1 kHz
-constexpr std::int64_t kMsNs = 1'000'000;
-
 // The maintenance thread of Device::run_maintenance, one step per tick: ask the loop to let go
 // of the driver, run the work for as long as the scenario says (or until the loop aborts it),
 // hand the driver back.

@@ -15,6 +15,9 @@
 
 namespace robotd::safety {
 
+inline constexpr std::int64_t kPeriodNs = 1'000'000;  // the rigs' 1 kHz loop
+inline constexpr std::int64_t kMsNs = 1'000'000;
+
 /// The simulated device: every joint shares these limits and default gains.
 struct DeviceSpec {
   std::size_t joints = 3;

@@ -24,8 +24,6 @@
 namespace robotd::safety {
 namespace {
 
-constexpr std::int64_t kPeriodNs = 1'000'000;  // 1 kHz
-constexpr std::int64_t kMsNs = 1'000'000;
 constexpr auto kHandOffWait = std::chrono::seconds(5);  // a service thread's step, however loaded the machine
 
 // The sessions' clock follows the rig's simulated time (one rig runs at a time).

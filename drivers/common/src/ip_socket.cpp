@@ -13,10 +13,10 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "errno_text.hpp"
+
 namespace robotd::transport {
 namespace {
-
-std::string why(int error) { return std::generic_category().message(error); }
 
 Result<sockaddr_in> ipv4_address(const Endpoint& endpoint) {
   sockaddr_in address{};
@@ -39,7 +39,7 @@ sockaddr* as_sockaddr(sockaddr_in& address) { return reinterpret_cast<sockaddr*>
 
 Result<Socket> open_socket(int type) {
   Socket sock(::socket(AF_INET, type | SOCK_NONBLOCK | SOCK_CLOEXEC, 0));
-  if (!sock.is_open()) return make_error(ErrorCode::kTransport, "cannot create a socket (" + why(errno) + ")");
+  if (!sock.is_open()) return make_error(ErrorCode::kTransport, "cannot create a socket (" + errno_text(errno) + ")");
   return sock;
 }
 
@@ -54,7 +54,7 @@ Result<Socket> bound(int type, const Endpoint& local, const char* what) {
   }
   if (bind(sock.value().fd(), as_sockaddr(address.value()), sizeof(sockaddr_in)) != 0) {
     return make_error(ErrorCode::kNotAvailable,
-                      std::string("cannot bind ") + what + " to " + local.to_string() + " (" + why(errno) + ")");
+                      std::string("cannot bind ") + what + " to " + local.to_string() + " (" + errno_text(errno) + ")");
   }
   return std::move(sock).value();
 }
@@ -89,7 +89,8 @@ Result<Socket> connect_tcp(const Endpoint& peer, std::chrono::milliseconds timeo
   const int yes = 1;
   setsockopt(sock.fd(), IPPROTO_TCP, TCP_NODELAY, &yes, sizeof(yes));
   const auto unreachable = [&](int error) {
-    return make_error(ErrorCode::kNotAvailable, "cannot connect to " + peer.to_string() + " (" + why(error) + ")");
+    return make_error(ErrorCode::kNotAvailable,
+                      "cannot connect to " + peer.to_string() + " (" + errno_text(error) + ")");
   };
   if (connect(sock.fd(), as_sockaddr(address.value()), sizeof(sockaddr_in)) == 0) return sock;
   if (errno != EINPROGRESS) return unreachable(errno);
@@ -122,7 +123,8 @@ Result<Socket> listen_tcp(const Endpoint& local, int backlog) {
   auto sock = bound(SOCK_STREAM, local, "a TCP listener");
   if (!sock) return sock.error();
   if (::listen(sock.value().fd(), backlog) != 0) {
-    return make_error(ErrorCode::kNotAvailable, "cannot listen on " + local.to_string() + " (" + why(errno) + ")");
+    return make_error(ErrorCode::kNotAvailable,
+                      "cannot listen on " + local.to_string() + " (" + errno_text(errno) + ")");
   }
   return std::move(sock).value();
 }
@@ -133,7 +135,7 @@ Result<Endpoint> local_endpoint(int fd) {
   sockaddr_in address{};
   socklen_t length = sizeof(address);
   if (getsockname(fd, as_sockaddr(address), &length) != 0) {
-    return make_error(ErrorCode::kTransport, "cannot read a socket's local address (" + why(errno) + ")");
+    return make_error(ErrorCode::kTransport, "cannot read a socket's local address (" + errno_text(errno) + ")");
   }
   return endpoint_of(address);
 }
@@ -142,7 +144,7 @@ Result<Endpoint> peer_endpoint(int fd) {
   sockaddr_in address{};
   socklen_t length = sizeof(address);
   if (getpeername(fd, as_sockaddr(address), &length) != 0) {
-    return make_error(ErrorCode::kTransport, "cannot read a socket's peer address (" + why(errno) + ")");
+    return make_error(ErrorCode::kTransport, "cannot read a socket's peer address (" + errno_text(errno) + ")");
   }
   return endpoint_of(address);
 }

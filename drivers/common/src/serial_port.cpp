@@ -11,6 +11,8 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include "errno_text.hpp"
+
 namespace robotd::transport {
 namespace {
 
@@ -56,8 +58,6 @@ std::string supported_bauds() {
   return text;
 }
 
-std::string reason(int error) { return std::generic_category().message(error); }
-
 /// Raw 8N1, no flow control, modem lines ignored, no translation or echo. VMIN 1 / VTIME 0
 /// rather than 0 / 0: with O_NONBLOCK a read never waits either way, but with VMIN 0 an empty
 /// line reads as 0 bytes, the same as a hang-up; with VMIN 1 it is EAGAIN and 0 means the
@@ -90,9 +90,10 @@ Error open_error(const std::string& device, int error) {
     case ENXIO:
     case ENODEV:
       return make_error(ErrorCode::kNotAvailable,
-                        "serial device " + device + " has no device behind it (" + reason(error) + "): unplugged?");
+                        "serial device " + device + " has no device behind it (" + errno_text(error) + "): unplugged?");
     default:
-      return make_error(ErrorCode::kNotAvailable, "cannot open serial device " + device + " (" + reason(error) + ")");
+      return make_error(ErrorCode::kNotAvailable,
+                        "cannot open serial device " + device + " (" + errno_text(error) + ")");
   }
 }
 
@@ -138,7 +139,8 @@ Result<void> SerialPort::open() {
                                                    " is not a terminal, so not a serial device: point \"device\" at "
                                                    "the arm's /dev/ttyACMn (or a simulator's pty link)");
     }
-    return fail(ErrorCode::kNotAvailable, "cannot read the settings of " + config_.device + " (" + reason(error) + ")");
+    return fail(ErrorCode::kNotAvailable,
+                "cannot read the settings of " + config_.device + " (" + errno_text(error) + ")");
   }
   // One user at a time: a second robotd (or another driver instance) on the same line would
   // steal half of the replies. An advisory lock rather than TIOCEXCL: the lock goes with the
@@ -151,7 +153,7 @@ Result<void> SerialPort::open() {
   if (cfsetispeed(&settings, *speed) != 0 || cfsetospeed(&settings, *speed) != 0 ||
       tcsetattr(fd, TCSANOW, &settings) != 0) {
     return fail(ErrorCode::kNotAvailable, "cannot set " + config_.device + " to raw 8N1 at " +
-                                              std::to_string(config_.baud) + " baud (" + reason(errno) + ")");
+                                              std::to_string(config_.baud) + " baud (" + errno_text(errno) + ")");
   }
   fd_ = fd;
   return {};
@@ -204,12 +206,12 @@ Result<void> PseudoTerminal::open(const std::string& link_path) {
   const int master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (master < 0) {
     return make_error(ErrorCode::kNotAvailable,
-                      "cannot create a pseudo-terminal (" + reason(errno) + "): is /dev/pts mounted?");
+                      "cannot create a pseudo-terminal (" + errno_text(errno) + "): is /dev/pts mounted?");
   }
   const auto fail = [&](const std::string& message) {
     const int error = errno;
     ::close(master);
-    return make_error(ErrorCode::kNotAvailable, message + " (" + reason(error) + ")");
+    return make_error(ErrorCode::kNotAvailable, message + " (" + errno_text(error) + ")");
   };
   std::array<char, 128> name{};
   if (grantpt(master) != 0 || unlockpt(master) != 0 || ptsname_r(master, name.data(), name.size()) != 0) {

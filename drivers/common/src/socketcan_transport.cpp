@@ -11,13 +11,9 @@
 #include <unistd.h>
 
 #include "can_frame_conversion.hpp"
+#include "errno_text.hpp"
 
 namespace robotd::transport {
-namespace {
-
-std::string reason(int error) { return std::generic_category().message(error); }
-
-}  // namespace
 
 Result<void> SocketCanTransport::open() {
   close();
@@ -25,7 +21,7 @@ Result<void> SocketCanTransport::open() {
   if (sock < 0) {
     const int error = errno;
     return make_error(ErrorCode::kNotAvailable,
-                      "cannot open a CAN socket (" + reason(error) +
+                      "cannot open a CAN socket (" + errno_text(error) +
                           (error == EAFNOSUPPORT ? "): this kernel has no SocketCAN (AF_CAN); load the can and can_raw "
                                                    "modules, or use the stand-in transport with a simulator"
                                                  : ")"));
@@ -37,7 +33,7 @@ Result<void> SocketCanTransport::open() {
   ifreq request{};
   interface_.copy(request.ifr_name, IFNAMSIZ - 1);
   if (ioctl(sock, SIOCGIFINDEX, &request) < 0) {
-    return fail("no CAN interface '" + interface_ + "' (" + reason(errno) +
+    return fail("no CAN interface '" + interface_ + "' (" + errno_text(errno) +
                 "): is the adapter plugged in? See `ip -details link show`");
   }
   const int index = request.ifr_ifindex;
@@ -50,7 +46,7 @@ Result<void> SocketCanTransport::open() {
   if (fd_) {
     const int enable = 1;
     if (setsockopt(sock, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &enable, sizeof(enable)) != 0) {
-      return fail("CAN interface '" + interface_ + "' cannot carry CAN-FD frames (" + reason(errno) +
+      return fail("CAN interface '" + interface_ + "' cannot carry CAN-FD frames (" + errno_text(errno) +
                   "): configure it with `ip link set " + interface_ +
                   " type can bitrate 1000000 dbitrate 5000000 fd on`");
     }
@@ -59,7 +55,7 @@ Result<void> SocketCanTransport::open() {
   address.can_family = AF_CAN;
   address.can_ifindex = index;
   if (bind(sock, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) {  // NOLINT
-    return fail("cannot bind to CAN interface '" + interface_ + "' (" + reason(errno) + ")");
+    return fail("cannot bind to CAN interface '" + interface_ + "' (" + errno_text(errno) + ")");
   }
   socket_ = sock;
   return {};

@@ -10,15 +10,12 @@
 namespace robotd::hightorque {
 namespace {
 
-constexpr std::uint32_t kCommandBit = 0x8000;
-constexpr std::size_t kHeaderBytes = 2;  // mode, query
-
 std::uint32_t type_bits(Width width) { return std::uint32_t{static_cast<std::uint8_t>(width)} << 16; }
 
 }  // namespace
 
 std::uint32_t command_id(Width width, int motor_or_block) noexcept {
-  return type_bits(width) | kCommandBit | (static_cast<std::uint32_t>(motor_or_block) & 0xFFU);
+  return type_bits(width) | layouts::kCommandBit | (static_cast<std::uint32_t>(motor_or_block) & 0xFFU);
 }
 
 std::uint32_t reply_id(Width width, int motor) noexcept {
@@ -29,15 +26,15 @@ transport::CanMessage encode_command(int motor, const MotorCommand& command, Wid
                                      const MotorScaling& scaling) noexcept {
   const auto fields = layouts::mode_fields(command.mode);
   transport::CanMessage message =
-      wire::motor_frame(width, motor, kHeaderBytes + fields.size() * wire::width_bytes(width));
+      wire::motor_frame(width, motor, layouts::kHeaderBytes + fields.size() * wire::width_bytes(width));
   message.data[0] = static_cast<std::uint8_t>(command.mode);
   message.data[1] = static_cast<std::uint8_t>(query);
-  layouts::put_fields(message.data, kHeaderBytes, width, fields, command, scaling);
+  layouts::put_fields(message.data, layouts::kHeaderBytes, width, fields, command, scaling);
   return message;
 }
 
 transport::CanMessage encode_query(int motor, Query query, Width width) noexcept {
-  transport::CanMessage message = wire::motor_frame(width, motor, kHeaderBytes);
+  transport::CanMessage message = wire::motor_frame(width, motor, layouts::kHeaderBytes);
   message.data[1] = static_cast<std::uint8_t>(query);
   return message;
 }

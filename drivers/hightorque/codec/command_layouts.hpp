@@ -17,6 +17,10 @@
 
 namespace robotd::hightorque::layouts {
 
+/// The CAN id bit that marks a command frame, and the bytes before a command's fields.
+inline constexpr std::uint32_t kCommandBit = 0x8000;
+inline constexpr std::size_t kHeaderBytes = 2;  // mode, query
+
 /// One parameter of a command. kZeroD is the d axis of the voltage / current modes, always 0.
 enum class Field : std::uint8_t {
   kPosition,

@@ -12,9 +12,7 @@
 namespace robotd::hightorque {
 namespace {
 
-constexpr std::uint32_t kCommandBit = 0x8000;
 constexpr std::uint32_t kBlockBit = 0x80;
-constexpr std::size_t kHeaderBytes = 2;  // mode, query
 
 /// Fills the mode's parameters from `bytes` at `width`, starting at `at`.
 void decode_fields(std::span<const layouts::Field> fields, wire::ConstBytes bytes, std::size_t at, Width width,
@@ -58,7 +56,7 @@ bool decode_system(wire::ConstBytes bytes, MotorRequest& request) {
 
 /// 00 <code>: a query or an info request, no mode change.
 bool decode_query(wire::ConstBytes bytes, MotorRequest& request) {
-  if (bytes.size() < kHeaderBytes) return false;
+  if (bytes.size() < layouts::kHeaderBytes) return false;
   const std::uint8_t code = bytes[1];
   switch (static_cast<InfoKind>(code)) {
     case InfoKind::kFirmwareVersion:
@@ -84,13 +82,13 @@ bool decode_single(wire::ConstBytes bytes, Width width, const MotorScaling& scal
     request.timeout_ms = wire::get_u16(bytes, 1);
     return true;
   }
-  if (!layouts::is_mode(code) || bytes.size() < kHeaderBytes || !layouts::is_query(bytes[1])) return false;
+  if (!layouts::is_mode(code) || bytes.size() < layouts::kHeaderBytes || !layouts::is_query(bytes[1])) return false;
   const auto fields = layouts::mode_fields(static_cast<Mode>(code));
-  if (bytes.size() < kHeaderBytes + fields.size() * wire::width_bytes(width)) return false;
+  if (bytes.size() < layouts::kHeaderBytes + fields.size() * wire::width_bytes(width)) return false;
   request.kind = MotorRequest::Kind::kCommand;
   request.command.mode = static_cast<Mode>(code);
   request.query = static_cast<Query>(bytes[1]);
-  decode_fields(fields, bytes, kHeaderBytes, width, scaling, request);
+  decode_fields(fields, bytes, layouts::kHeaderBytes, width, scaling, request);
   return true;
 }
 
@@ -132,7 +130,8 @@ std::size_t decode_request(const transport::CanMessage& message, const MotorScal
   const std::uint32_t id = message.id;
   const std::uint32_t type = (id >> 16) & 0x3U;
   // Bits 28…18 (reserved, and the classic-CAN MIT flag) must be clear, bit 15 set.
-  if (out.empty() || bytes.empty() || !message.extended || (id >> 18) != 0 || (id & kCommandBit) == 0 || type == 0) {
+  if (out.empty() || bytes.empty() || !message.extended || (id >> 18) != 0 || (id & layouts::kCommandBit) == 0 ||
+      type == 0) {
     return 0;
   }
   const auto width = static_cast<Width>(type);

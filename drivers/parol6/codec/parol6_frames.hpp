@@ -121,6 +121,10 @@ inline constexpr double kTimingTickSeconds = 128.0 / 90e6;  // 1.4222 µs
 
 // --- primitives (spec §3) ----------------------------------------------------------------------
 
+/// The range of the int24 fields (positions and speeds in steps).
+inline constexpr std::int32_t kMinInt24 = -8'388'608;
+inline constexpr std::int32_t kMaxInt24 = 8'388'607;
+
 /// value modulo 2^24, big-endian; values outside ±2^23 wrap like the firmware's.
 void put_int24(std::span<std::uint8_t, 3> out, std::int32_t value);
 std::int32_t get_int24(std::span<const std::uint8_t, 3> in);

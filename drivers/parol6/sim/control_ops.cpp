@@ -18,8 +18,6 @@ using sim_control::RequestError;
 
 constexpr std::int64_t kMaxDurationMs = 3'600'000;
 constexpr std::int64_t kMaxByteCount = 1'000'000;
-constexpr std::int64_t kMinInt24 = -8'388'608;
-constexpr std::int64_t kMaxInt24 = 8'388'607;
 constexpr const char* kOps =
     "state, estop, inputs, silence, drop_bytes, garble, garbage, disconnect, set_steps, gripper_object, "
     "gripper_error, reset_counters";

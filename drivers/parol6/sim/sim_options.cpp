@@ -4,13 +4,6 @@
 #include <string_view>
 
 namespace robotd::parol6::sim {
-namespace {
-
-constexpr std::int32_t kMinInt24 = -8'388'608;
-constexpr std::int32_t kMaxInt24 = 8'388'607;
-
-}  // namespace
-
 Result<std::array<std::int32_t, kJoints>> parse_initial_steps(const std::string& text) {
   std::array<std::int32_t, kJoints> steps{};
   std::string_view rest = text;

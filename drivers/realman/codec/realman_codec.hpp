@@ -38,6 +38,9 @@ double rad_from_milliradians(std::int64_t milliradians);
 
 // ---- Framing -------------------------------------------------------------------------------
 
+/// What ends every message on the TCP link, and a UDP push datagram if present.
+inline constexpr std::string_view kMessageTerminator = "\r\n";
+
 /// One message as sent: compact JSON followed by "\r\n".
 std::string frame(const nlohmann::json& message);
 

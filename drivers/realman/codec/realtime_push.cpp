@@ -15,7 +15,6 @@ namespace robotd::realman {
 namespace {
 
 constexpr std::string_view kPushState = "realtime_arm_joint_state";
-constexpr std::string_view kTerminator = "\r\n";
 constexpr double kMilli = 1e-3;
 constexpr double kMicro = 1e-6;
 constexpr double kQuaternionScale = 1e6;
@@ -61,7 +60,7 @@ JointStatus read_joint_status(FieldReader& joint_status) {
 }  // namespace
 
 Result<RealtimePush> parse_realtime_push(std::string_view datagram, SpeedUnit speed_unit) {
-  if (datagram.ends_with(kTerminator)) datagram.remove_suffix(kTerminator.size());
+  if (datagram.ends_with(kMessageTerminator)) datagram.remove_suffix(kMessageTerminator.size());
   auto parsed = parse_object(datagram);
   if (!parsed) return make_error(ErrorCode::kInvalidArgument, "realtime push: " + parsed.error().message);
   const nlohmann::json& body = parsed.value();

@@ -16,7 +16,6 @@ namespace {
 constexpr double kMillidegreesPerRad = 180'000.0 / std::numbers::pi;
 constexpr double kMicrometresPerM = 1e6;
 constexpr double kMilliradiansPerRad = 1e3;
-constexpr std::string_view kTerminator = "\r\n";
 
 /// Rounds to the nearest integer. Values beyond int64 (and NaN) saturate instead of taking
 /// llround's unspecified result: the controller refuses such a target as beyond the limits.
@@ -42,7 +41,7 @@ double rad_from_milliradians(std::int64_t milliradians) {
 std::string frame(const nlohmann::json& message) {
   // Strings robotd puts in a request (an IP address) are not validated as UTF-8: replace bad
   // bytes rather than throw.
-  return message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + std::string(kTerminator);
+  return message.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + std::string(kMessageTerminator);
 }
 
 void LineSplitter::append(std::string_view bytes) {
@@ -50,8 +49,8 @@ void LineSplitter::append(std::string_view bytes) {
     std::size_t resume = 0;
     if (discarded_cr_ && bytes.front() == '\n') {
       resume = 1;
-    } else if (const auto end = bytes.find(kTerminator); end != std::string_view::npos) {
-      resume = end + kTerminator.size();
+    } else if (const auto end = bytes.find(kMessageTerminator); end != std::string_view::npos) {
+      resume = end + kMessageTerminator.size();
     } else {
       discarded_cr_ = bytes.back() == '\r';
       return;
@@ -63,8 +62,8 @@ void LineSplitter::append(std::string_view bytes) {
   buffer_.append(bytes);
 
   // A line that outgrows the limit before its terminator arrives is dropped now, not buffered.
-  const auto last_end = buffer_.rfind(kTerminator);
-  const std::size_t tail_start = last_end == std::string::npos ? 0 : last_end + kTerminator.size();
+  const auto last_end = buffer_.rfind(kMessageTerminator);
+  const std::size_t tail_start = last_end == std::string::npos ? 0 : last_end + kMessageTerminator.size();
   const bool ends_with_cr = buffer_.size() > tail_start && buffer_.back() == '\r';
   const std::size_t tail_bytes = buffer_.size() - tail_start - (ends_with_cr ? 1 : 0);
   if (tail_bytes <= max_line_bytes_) return;
@@ -76,10 +75,10 @@ void LineSplitter::append(std::string_view bytes) {
 
 std::optional<std::string> LineSplitter::next() {
   while (true) {
-    const auto end = buffer_.find(kTerminator);
+    const auto end = buffer_.find(kMessageTerminator);
     if (end == std::string::npos) return std::nullopt;
     std::string line = buffer_.substr(0, end);
-    buffer_.erase(0, end + kTerminator.size());
+    buffer_.erase(0, end + kMessageTerminator.size());
     if (line.size() > max_line_bytes_) {
       ++oversized_;
       continue;

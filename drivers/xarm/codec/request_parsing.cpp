@@ -10,8 +10,6 @@
 namespace robotd::xarm {
 namespace {
 
-constexpr std::uint8_t number(Register reg) { return static_cast<std::uint8_t>(reg); }
-
 constexpr std::size_t kLegacyLineFloats = 9;
 constexpr std::size_t kLineFloatsWithRadius = 10;
 

@@ -9,8 +9,6 @@
 namespace robotd::xarm {
 namespace {
 
-constexpr std::uint8_t number(Register reg) { return static_cast<std::uint8_t>(reg); }
-
 Request request(Register reg, ByteWriter& params) { return Request{.reg = number(reg), .params = params.take()}; }
 
 Request u8_request(Register reg, std::initializer_list<std::uint8_t> values) {

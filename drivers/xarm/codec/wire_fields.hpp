@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 #include "robotd/result.hpp"
@@ -11,6 +12,9 @@
 namespace robotd::xarm {
 
 inline constexpr double kMmPerM = 1000.0;
+
+/// A register's number on the wire.
+constexpr std::uint8_t number(Register reg) { return static_cast<std::uint8_t>(reg); }
 inline constexpr std::size_t kF32Bytes = 4;
 inline constexpr std::size_t kJointBytes = kMaxDof * kF32Bytes;
 inline constexpr std::size_t kPoseBytes = 6 * kF32Bytes;

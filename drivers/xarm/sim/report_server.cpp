@@ -13,8 +13,8 @@ namespace robotd::xarm::sim {
 namespace {
 
 /// A client that reads nothing while this much is queued for it is cut off.
-constexpr std::size_t kMaxQueuedBytes = std::size_t{1} * 1024 * 1024;
-constexpr int kMaxReadsPerPass = 16;
+constexpr std::size_t kReportMaxQueuedBytes = std::size_t{1} * 1024 * 1024;
+constexpr int kReportReadsPerPass = 16;
 constexpr std::int64_t kRealPeriodNs = 10'000'000;     // 100 Hz
 constexpr std::int64_t kNormalPeriodNs = 200'000'000;  // 5 Hz
 constexpr std::int64_t kRealtimePeriodNs = 4'000'000;  // 250 Hz
@@ -50,7 +50,7 @@ void ReportServer::serve() {
   }
   std::array<char, 512> ignored{};
   for (Client& client : clients_) {
-    for (int i = 0; i < kMaxReadsPerPass && !client.closed; ++i) {
+    for (int i = 0; i < kReportReadsPerPass && !client.closed; ++i) {
       const ssize_t n = ::recv(client.socket.fd(), ignored.data(), ignored.size(), 0);
       if (n > 0 || (n < 0 && errno == EINTR)) continue;
       if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;
@@ -79,7 +79,7 @@ void ReportServer::flush() {
       client.closed = true;
     }
     client.output.erase(0, sent);
-    if (client.output.size() > kMaxQueuedBytes) {
+    if (client.output.size() > kReportMaxQueuedBytes) {
       spdlog::warn("a {} report client reads nothing; disconnecting it", report_kind_name(kind_));
       client.closed = true;
     }

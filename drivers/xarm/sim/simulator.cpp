@@ -16,9 +16,9 @@ namespace robotd::xarm::sim {
 namespace {
 
 constexpr std::int64_t kLoopPeriodNs = 1'000'000;
-constexpr int kMaxReadsPerPass = 64;
+constexpr int kCommandReadsPerPass = 64;
 /// A client that reads nothing while this much is queued for it is cut off.
-constexpr std::size_t kMaxQueuedBytes = std::size_t{4} * 1024 * 1024;
+constexpr std::size_t kCommandMaxQueuedBytes = std::size_t{4} * 1024 * 1024;
 
 }  // namespace
 
@@ -111,7 +111,7 @@ void Simulator::accept_clients() {
 
 void Simulator::read_client(Client& client) {
   std::array<std::uint8_t, 8192> bytes{};
-  for (int i = 0; i < kMaxReadsPerPass && !client.closed; ++i) {
+  for (int i = 0; i < kCommandReadsPerPass && !client.closed; ++i) {
     const ssize_t n = ::recv(client.socket.fd(), bytes.data(), bytes.size(), 0);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return;
@@ -170,7 +170,7 @@ void Simulator::flush(Client& client) {
   const transport::SendResult result = transport::send_some(client.socket.fd(), client.output, sent);
   client.output.erase(0, sent);
   if (result == transport::SendResult::kClosed) client.closed = true;
-  if (client.output.size() > kMaxQueuedBytes) {
+  if (client.output.size() > kCommandMaxQueuedBytes) {
     spdlog::warn("client {} ({}) reads nothing; disconnecting it", client.id, client.peer.to_string());
     client.closed = true;
   }

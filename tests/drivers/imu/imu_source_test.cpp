@@ -26,7 +26,7 @@ using nlohmann::json;
 using testing::ImuSimProcess;
 using Clock = std::chrono::steady_clock;
 
-constexpr double kGravity = 9.80665;
+constexpr double kStandardGravity = 9.80665;
 
 /// Polls `condition` every 10 ms until it holds or `timeout` passed.
 bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
@@ -129,7 +129,7 @@ TEST_F(LiveImuSource, SamplesArriveAtTheEmulatorsRate) {
   EXPECT_LT(now_ns - stamp, 100'000'000);
   // Swaying gently about level: gravity dominates the specific force.
   const auto& a = sample.linear_acceleration_m_s2;
-  EXPECT_NEAR(std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), kGravity, 1e-3);
+  EXPECT_NEAR(std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), kStandardGravity, 1e-3);
   EXPECT_GT(a[2], 9.7);
 
   const auto diagnostics = source_->diagnostics();
@@ -166,9 +166,9 @@ TEST_F(LiveImuSource, OrientationFollowsSetOrientation) {
   EXPECT_NEAR(std::abs(dot), 1.0, 1e-9);
   // Held still: no rotation; specific force is gravity in body axes.
   for (const double rate : reading.angular_velocity_rad_s) EXPECT_NEAR(rate, 0.0, 1e-6);
-  EXPECT_NEAR(reading.linear_acceleration_m_s2[0], -kGravity * std::sin(pitch), 1e-5);
-  EXPECT_NEAR(reading.linear_acceleration_m_s2[1], kGravity * std::sin(roll) * std::cos(pitch), 1e-5);
-  EXPECT_NEAR(reading.linear_acceleration_m_s2[2], kGravity * std::cos(roll) * std::cos(pitch), 1e-5);
+  EXPECT_NEAR(reading.linear_acceleration_m_s2[0], -kStandardGravity * std::sin(pitch), 1e-5);
+  EXPECT_NEAR(reading.linear_acceleration_m_s2[1], kStandardGravity * std::sin(roll) * std::cos(pitch), 1e-5);
+  EXPECT_NEAR(reading.linear_acceleration_m_s2[2], kStandardGravity * std::cos(roll) * std::cos(pitch), 1e-5);
   EXPECT_NEAR(reading.temperature_c, 36.5, 1e-9);
 }
 

@@ -21,8 +21,7 @@
 namespace robotd::parol6 {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double radians(double deg) { return deg * kPi / 180.0; }
+constexpr double radians(double deg) { return deg * std::numbers::pi / 180.0; }
 constexpr double kDt = 0.01;  // the hosts' 100 Hz
 
 constexpr JointVector degrees_to_q(const std::array<double, kJoints>& deg) {
@@ -88,8 +87,12 @@ class Random {
     return q;
   }
   Pose pose() {
-    return {uniform(-0.5, 0.5), uniform(-0.5, 0.5),         uniform(0, 0.6),
-            uniform(-kPi, kPi), uniform(-kPi / 2, kPi / 2), uniform(-kPi, kPi)};
+    return {uniform(-0.5, 0.5),
+            uniform(-0.5, 0.5),
+            uniform(0, 0.6),
+            uniform(-std::numbers::pi, std::numbers::pi),
+            uniform(-std::numbers::pi / 2, std::numbers::pi / 2),
+            uniform(-std::numbers::pi, std::numbers::pi)};
   }
 
  private:
@@ -174,7 +177,7 @@ TEST(Parol6Pose, RotationIsSpatialmathRpyInXyzOrder) {
 TEST(Parol6Pose, PoseAtStandby) {
   // Tool z along base x: pitch +90°, so roll is 0 and the turn is in yaw.
   const Pose pose = forward_kinematics(kStandby);
-  EXPECT_NEAR(pose.pitch_rad, kPi / 2, 1e-12);
+  EXPECT_NEAR(pose.pitch_rad, std::numbers::pi / 2, 1e-12);
   EXPECT_EQ(pose.roll_rad, 0.0);
   EXPECT_LT(difference(transform_of(pose), tool_transform(kStandby)).rotation_rad, 1e-7);
 }
@@ -204,7 +207,7 @@ TEST(Parol6Pose, TransformOfInvertsPoseOfForAnyRotation) {
     transform.linear() = rotation.toRotationMatrix();
     transform.translation() << random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1);
     const Pose pose = pose_of(transform);
-    EXPECT_LE(std::abs(pose.pitch_rad), kPi / 2);
+    EXPECT_LE(std::abs(pose.pitch_rad), std::numbers::pi / 2);
     const Difference error = difference(transform_of(pose), transform);
     EXPECT_LT(error.position_m, 1e-15);
     EXPECT_LT(error.rotation_rad, 1e-9);
@@ -212,7 +215,7 @@ TEST(Parol6Pose, TransformOfInvertsPoseOfForAnyRotation) {
 }
 
 TEST(Parol6Pose, AtPitchNinetyDegreesYawCarriesTheTurn) {
-  for (const double pitch : {kPi / 2, -kPi / 2}) {
+  for (const double pitch : {std::numbers::pi / 2, -std::numbers::pi / 2}) {
     const Pose pose{.roll_rad = 0.3, .pitch_rad = pitch, .yaw_rad = 0.5};
     const Pose back = pose_of(transform_of(pose));
     EXPECT_DOUBLE_EQ(back.pitch_rad, pitch);

@@ -17,9 +17,8 @@ namespace {
 
 using Joints = std::array<double, kArmJoints>;
 
-constexpr double kPi = std::numbers::pi;
-constexpr double degrees(double rad) { return rad * 180.0 / kPi; }
-constexpr double radians(double deg) { return deg * kPi / 180.0; }
+constexpr double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
+constexpr double radians(double deg) { return deg * std::numbers::pi / 180.0; }
 
 // The SDK's joint limits (§8.1).
 constexpr Joints kMin{-2.6179, 0.0, -2.967, -1.745, -1.22, -2.09439};
@@ -55,8 +54,12 @@ class RandomPoses {
  public:
   /// roll, yaw in (−π, π), pitch in (−π/2, π/2).
   CartesianPose pose() {
-    return {uniform(-0.5, 0.5), uniform(-0.5, 0.5),         uniform(0, 0.6),
-            uniform(-kPi, kPi), uniform(-kPi / 2, kPi / 2), uniform(-kPi, kPi)};
+    return {uniform(-0.5, 0.5),
+            uniform(-0.5, 0.5),
+            uniform(0, 0.6),
+            uniform(-std::numbers::pi, std::numbers::pi),
+            uniform(-std::numbers::pi / 2, std::numbers::pi / 2),
+            uniform(-std::numbers::pi, std::numbers::pi)};
   }
   Joints joints_within_limits() {
     Joints q{};
@@ -127,7 +130,7 @@ TEST(PiperKinematics, TransformOfInvertsPoseOfForAnyRotation) {
 }
 
 TEST(PiperKinematics, PitchOfPlusMinusNinetyDegreesPutsAllTurnInRoll) {
-  for (const double pitch : {kPi / 2, -kPi / 2}) {
+  for (const double pitch : {std::numbers::pi / 2, -std::numbers::pi / 2}) {
     const CartesianPose pose{.x_m = 0.1, .rx_rad = 0.3, .ry_rad = pitch, .rz_rad = 0.5};
     const CartesianPose back = pose_of(transform_of(pose));
     EXPECT_DOUBLE_EQ(back.ry_rad, pitch);
@@ -141,7 +144,7 @@ TEST(PiperKinematics, PitchOfPlusMinusNinetyDegreesPutsAllTurnInRoll) {
 TEST(PiperKinematics, PitchWithinTheSdkBandSnapsToNinetyDegrees) {
   const CartesianPose near_singular{.rx_rad = 0.2, .ry_rad = radians(89.5), .rz_rad = 0.1};
   const CartesianPose back = pose_of(transform_of(near_singular));
-  EXPECT_DOUBLE_EQ(back.ry_rad, kPi / 2);
+  EXPECT_DOUBLE_EQ(back.ry_rad, std::numbers::pi / 2);
   EXPECT_EQ(back.rz_rad, 0.0);
   const CartesianPose outside{.ry_rad = radians(89.0)};
   EXPECT_NEAR(pose_of(transform_of(outside)).ry_rad, radians(89.0), 1e-9);
@@ -156,7 +159,7 @@ TEST(PiperKinematics, QuaternionMatchesEigen) {
     EXPECT_NEAR(std::abs(expected.dot(Eigen::Quaterniond(w, x, y, z))), 1.0, 1e-12);
     EXPECT_NEAR(x * x + y * y + z * z + w * w, 1.0, 1e-12);
   }
-  const auto yaw = quaternion_xyzw(CartesianPose{.rz_rad = kPi / 2});
+  const auto yaw = quaternion_xyzw(CartesianPose{.rz_rad = std::numbers::pi / 2});
   EXPECT_NEAR(yaw[0], 0, 1e-15);
   EXPECT_NEAR(yaw[1], 0, 1e-15);
   EXPECT_NEAR(yaw[2], std::sqrt(0.5), 1e-15);

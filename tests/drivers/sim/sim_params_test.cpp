@@ -10,7 +10,7 @@ namespace {
 
 using nlohmann::json;
 
-json arm_params() {
+json full_arm_params() {
   return json::parse(R"({
     "model": "robotd simulated 6-joint arm",
     "joint_defaults": {"effort_max_nm": 30, "default_kp": 80, "external_torque_nm": -1.5},
@@ -34,7 +34,7 @@ std::string error_of(const json& params) {
 }
 
 TEST(SimParams, AcceptsArmWithNamedJointsAndAppliesJointDefaults) {
-  const Result<SimParams> parsed = parse_sim_params(arm_params());
+  const Result<SimParams> parsed = parse_sim_params(full_arm_params());
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   const SimParams& params = parsed.value();
   EXPECT_EQ(params.model, "robotd simulated 6-joint arm");
@@ -79,7 +79,7 @@ TEST(SimParams, JointCountNamesJointsWithBuiltInDefaults) {
 }
 
 TEST(SimParams, RejectsBothJointCountAndJoints) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joint_count"] = 6;
   EXPECT_EQ(error_of(params), "joint_count: give either joint_count or joints, not both");
 }
@@ -97,36 +97,36 @@ TEST(SimParams, RejectsJointCountOutsideOneToMaxJoints) {
 }
 
 TEST(SimParams, RejectsUnknownKeyNamingItsPath) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][1]["intertia_kg_m2"] = 0.1;
   const std::string error = error_of(params);
   EXPECT_EQ(error.rfind("joints[1].intertia_kg_m2: unknown key", 0), 0u) << error;
 
-  params = arm_params();
+  params = full_arm_params();
   params["imu_rate_hz"] = 100;
   EXPECT_EQ(error_of(params).rfind("imu_rate_hz: unknown key", 0), 0u);
 }
 
 TEST(SimParams, RejectsWrongTypeNamingItsPath) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][0]["kp_max"] = "high";
   EXPECT_EQ(error_of(params), R"(joints[0].kp_max: expected a number, got "high")");
 }
 
 TEST(SimParams, RejectsNonPositiveInertia) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][2]["inertia_kg_m2"] = -1;
   EXPECT_EQ(error_of(params), "joints[2].inertia_kg_m2: expected a number > 0, got -1");
 }
 
 TEST(SimParams, RejectsPositionMinNotBelowMax) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][2]["position_min_rad"] = 3.0;
   EXPECT_EQ(error_of(params), "joints[2].position_min_rad: expected less than position_max_rad (3), got 3");
 }
 
 TEST(SimParams, RejectsDefaultGainsAboveTheirMaxima) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][3]["default_kp"] = 600;
   params["joints"][4]["default_kd"] = 11;
   EXPECT_EQ(error_of(params),
@@ -135,14 +135,14 @@ TEST(SimParams, RejectsDefaultGainsAboveTheirMaxima) {
 }
 
 TEST(SimParams, RejectsInitialPositionOutsideLimits) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][0]["initial_position_rad"] = 2.7;
   EXPECT_EQ(error_of(params),
             "joints[0].initial_position_rad: expected within position_min_rad..position_max_rad (-2.6..2.6), got 2.7");
 }
 
 TEST(SimParams, RejectsDuplicateAndMalformedJointNames) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joints"][3]["name"] = "elbow";
   params["joints"][4]["name"] = "wrist 2";
   params["joints"][5].erase("name");
@@ -152,7 +152,7 @@ TEST(SimParams, RejectsDuplicateAndMalformedJointNames) {
 }
 
 TEST(SimParams, ReportsAProblemInheritedFromJointDefaultsOnceAtJointDefaults) {
-  json params = arm_params();
+  json params = full_arm_params();
   params["joint_defaults"]["default_kp"] = 900;
   EXPECT_EQ(error_of(params), "joint_defaults.default_kp: expected at most kp_max (500), got 900");
 }
