@@ -26,9 +26,15 @@ command -v "$clang_tidy" >/dev/null || { echo "SKIP: $clang_tidy not found" >&2;
 [[ -f $build/compile_commands.json ]] ||
   { echo "FAIL: $build/compile_commands.json missing (configure with CMAKE_EXPORT_COMPILE_COMMANDS=ON)"; exit 1; }
 
-# A unity build's compile_commands.json names its unity sources, not the project's files: clang-tidy
-# then reads a per-file database of its own, configured beside the build with the same compilers
-# and flags (and its generated IDL headers, which the compile commands include).
+# A unity build's compile_commands.json names its unity sources, not the project's files. Product
+# code (daemon, clients, drivers, idl, bench) is then checked file by file, from a per-file database
+# configured beside the build with the same compilers and flags (and its generated IDL headers,
+# which the compile commands include): the clang static analyzer only looks into a file that is
+# checked as itself. Test code, which the analyzer skips (tests/.clang-tidy), is checked through the
+# build's own unity sources, with the tests' configuration: GoogleTest and the rest are parsed once
+# per 8 files instead of once per file, a third of the time.
+tidy_build=$build
+unity_build=
 if grep -q '/Unity/unity_' "$build/compile_commands.json"; then
   cache_value() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
   build_type=$(cache_value CMAKE_BUILD_TYPE)
@@ -41,12 +47,17 @@ if grep -q '/Unity/unity_' "$build/compile_commands.json"; then
     -DCMAKE_CXX_FLAGS_"$type_flags"="$(cache_value CMAKE_CXX_FLAGS_"$type_flags")" >"$db.log" 2>&1 &&
     cmake --build "$db" --target robotd_msgs_generated >>"$db.log" 2>&1 ||
     { cat "$db.log"; echo "FAIL: could not configure $db"; exit 1; }
-  build=$db
+  unity_build=$build
+  tidy_build=$db
 fi
 
-mapfile -t files < <(python3 - "$src" "$build" <<'PY'
+# Prints the files to check from DATABASE's compile_commands.json: with MODE "files", the project's
+# own .cpp files (not generated ones: those are under a build tree); "files-but-tests" leaves out
+# tests/; "unity-tests" prints the unity sources of the targets under tests/.
+list_files() {
+  python3 - "$src" "$1" "$2" <<'PY'
 import json, os, sys
-src, build = sys.argv[1], sys.argv[2]
+src, build, mode = sys.argv[1], sys.argv[2], sys.argv[3]
 own = ("daemon", "clients", "drivers", "idl", "tests", "bench")
 seen = set()
 for entry in json.load(open(os.path.join(build, "compile_commands.json"))):
@@ -54,33 +65,69 @@ for entry in json.load(open(os.path.join(build, "compile_commands.json"))):
     name = os.path.normpath(os.path.join(entry["directory"], entry["file"]))
     path = os.path.realpath(name)
     rel = os.path.relpath(path, src)
-    if (path.endswith(".cpp") and not path.startswith(build + os.sep) and rel.split(os.sep)[0] in own
-            and os.path.exists(path) and name not in seen):
+    if mode == "unity-tests":
+        chosen = path.startswith(os.path.join(build, "tests") + os.sep) and "/Unity/unity_" in path and path.endswith(".cxx")
+    else:
+        top = rel.split(os.sep)[0]
+        chosen = (path.endswith(".cpp") and not path.startswith(build + os.sep) and top in own
+                  and not (mode == "files-but-tests" and top == "tests"))
+    if chosen and os.path.exists(path) and name not in seen:
         seen.add(name)
         print(name)
 PY
-)
-((${#files[@]} > 0)) || { echo "no project .cpp files in $build/compile_commands.json"; exit 0; }
+}
+
+unity_tests=()
+if [[ -n $unity_build ]]; then
+  mapfile -t files < <(list_files "$tidy_build" files-but-tests)
+  mapfile -t unity_tests < <(list_files "$unity_build" unity-tests)
+else
+  mapfile -t files < <(list_files "$tidy_build" files)
+fi
+((${#files[@]} + ${#unity_tests[@]} > 0)) || { echo "no project .cpp files in $build/compile_commands.json"; exit 0; }
 "$clang_tidy" --version | grep -i version
-echo "clang-tidy: ${#files[@]} files, $jobs jobs, analyzer mode $analyzer_mode"
+echo "clang-tidy: ${#files[@]} files and ${#unity_tests[@]} unity sources of tests, $jobs jobs, analyzer mode $analyzer_mode"
 
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+tests_config=$(mktemp)
+trap 'rm -f "$log" "$tests_config"' EXIT
 start=$SECONDS
 rc=0
 # The run-clang-tidy of clang-tidy's own version (clang-tidy-22: run-clang-tidy-22).
 version_suffix=$(basename "$clang_tidy" | sed -nE 's/^clang-tidy(-[0-9]+)$/\1/p')
 run_clang_tidy=${RUN_CLANG_TIDY-run-clang-tidy$version_suffix}
-if [[ -n $run_clang_tidy ]] && command -v "$run_clang_tidy" >/dev/null; then
-  # File arguments are regular expressions; anchor each path exactly.
-  mapfile -t regexes < <(printf '%s\n' "${files[@]}" | sed 's/[].[^$*+?(){}|\\]/\\&/g; s/.*/^&$/')
-  "$run_clang_tidy" -quiet -clang-tidy-binary "$(command -v "$clang_tidy")" -p "$build" -j "$jobs" \
-    "${analyzer_args[@]/#/-extra-arg=}" "${regexes[@]}" \
-    >"$log" 2>&1 || rc=$?
-else
-  printf '%s\0' "${files[@]}" |
-    xargs -0 -n 1 -P "$jobs" "$clang_tidy" --quiet -p "$build" "${analyzer_args[@]/#/--extra-arg=}" >"$log" 2>&1 ||
-    rc=$?
+
+# Runs clang-tidy on FILES... with the compile database in DATABASE and the options in EXTRA (an
+# array name: more clang-tidy options); appends what it prints to $log, sets rc on failure.
+tidy() {
+  local database=$1 extra_name=$2
+  shift 2
+  local -n extra=$extra_name
+  (($# > 0)) || return 0
+  if [[ -n $run_clang_tidy ]] && command -v "$run_clang_tidy" >/dev/null; then
+    # File arguments are regular expressions; anchor each path exactly.
+    local regexes
+    mapfile -t regexes < <(printf '%s\n' "$@" | sed 's/[].[^$*+?(){}|\\]/\\&/g; s/.*/^&$/')
+    "$run_clang_tidy" -quiet -clang-tidy-binary "$(command -v "$clang_tidy")" -p "$database" -j "$jobs" \
+      "${analyzer_args[@]/#/-extra-arg=}" "${extra[@]/#/-}" "${regexes[@]}" >>"$log" 2>&1 || rc=$?
+  else
+    printf '%s\0' "$@" |
+      xargs -0 -n 1 -P "$jobs" "$clang_tidy" --quiet -p "$database" "${analyzer_args[@]/#/--extra-arg=}" \
+        "${extra[@]/#/--}" >>"$log" 2>&1 || rc=$?
+  fi
+}
+
+no_options=()
+tidy "$tidy_build" no_options "${files[@]}"
+if ((${#unity_tests[@]} > 0)); then
+  # The tests' configuration as clang-tidy resolves it for a test file, but for the #include of
+  # .cpp files, which is what a unity source is.
+  "$clang_tidy" --dump-config "$src/tests/support/robotd_process.cpp" 2>/dev/null |
+    sed -E 's/^(Checks: +"[^"]*)"/\1,-bugprone-suspicious-include"/' >"$tests_config"
+  grep -q -- '-bugprone-suspicious-include"' "$tests_config" ||
+    { echo "FAIL: could not derive the tests' clang-tidy configuration"; cat "$tests_config"; exit 1; }
+  tests_options=("config-file=$tests_config")
+  tidy "$unity_build" tests_options "${unity_tests[@]}"
 fi
 
 # run-clang-tidy forces --use-color; keep the log plain for CTest.
@@ -95,4 +142,4 @@ if ((rc != 0)) || grep -qE ': (error|warning): ' "$log"; then
   grep -E '^[^:]+:[0-9]+:[0-9]+: (error|warning): ' "$log" | sort -u | sed 's/^/  /' || true
   exit 1
 fi
-echo "ok: ${#files[@]} files clean ($((SECONDS - start)) s)"
+echo "ok: ${#files[@]} files and ${#unity_tests[@]} unity sources of tests clean ($((SECONDS - start)) s)"

@@ -11,7 +11,7 @@ namespace robotd::hightorque::sim {
 namespace {
 
 constexpr int kMaxReadsPerPass = 64;
-constexpr std::size_t kGarbagePerPass = 256;  // bytes
+constexpr std::size_t kGarbageBytesPerPass = 256;  // bytes
 
 bool slot_command(BoardCommand command) {
   switch (command) {
@@ -191,8 +191,8 @@ void Bus::send_bytes(std::span<const std::uint8_t> bytes) {
 
 void Bus::send_board_garbage() {
   if (!host_connected_ || garbage_pending_ <= 0) return;
-  std::array<std::uint8_t, kGarbagePerPass> bytes{};
-  const auto count = static_cast<std::size_t>(std::min<std::int64_t>(garbage_pending_, kGarbagePerPass));
+  std::array<std::uint8_t, kGarbageBytesPerPass> bytes{};
+  const auto count = static_cast<std::size_t>(std::min<std::int64_t>(garbage_pending_, kGarbageBytesPerPass));
   std::uniform_int_distribution<int> byte(0, 255);
   for (std::size_t i = 0; i < count; ++i) {
     do {

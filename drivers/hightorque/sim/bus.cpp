@@ -106,8 +106,9 @@ void Bus::send_due(std::int64_t now_ns) {
       reply(encode_reply(motor.report(motor.push_query()), motor.push_width(), scaling_));
     }
   }
-  constexpr int kGarbagePerPass = 10;  // spread out, so replies keep flowing between them
-  for (int i = 0; i < kGarbagePerPass && garbage_pending_ > 0; ++i, --garbage_pending_) send_frame(garbage_frame());
+  constexpr int kGarbageFramesPerPass = 10;  // spread out, so replies keep flowing between them
+  for (int i = 0; i < kGarbageFramesPerPass && garbage_pending_ > 0; ++i, --garbage_pending_)
+    send_frame(garbage_frame());
 }
 
 SimMotor* Bus::motor(int id) {
