@@ -9,6 +9,7 @@
 #include <sched.h>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -200,20 +201,26 @@ TEST(Participant, ReceiveThreadPriorityPutsCyclonesReceiveThreadOnSchedFifo) {
   settings.receive_thread_priority = 3;
   auto participant = Participant::create(settings);
   ASSERT_TRUE(participant) << participant.error().message;
-  std::vector<std::string> receive_threads;
-  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
-    std::ifstream comm(task.path() / "comm");
-    std::string name;
-    std::getline(comm, name);
-    if (!name.starts_with("recv")) continue;
-    receive_threads.push_back(name);
-    const auto tid = static_cast<pid_t>(std::stol(task.path().filename().string()));
-    sched_param param{};
-    EXPECT_EQ(sched_getscheduler(tid), SCHED_FIFO) << name;
-    ASSERT_EQ(sched_getparam(tid, &param), 0);
-    EXPECT_EQ(param.sched_priority, 3) << name;
-  }
-  EXPECT_EQ(receive_threads, std::vector<std::string>{"recv"}) << "one receive thread for every socket";
+  // Each thread names itself once it runs: wait for the receive thread's name.
+  std::vector<std::pair<std::string, pid_t>> receive_threads;
+  const auto find_receive_threads = [&] {
+    receive_threads.clear();
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+      std::ifstream comm(task.path() / "comm");
+      std::string name;
+      std::getline(comm, name);
+      if (name.starts_with("recv")) receive_threads.emplace_back(name, std::stol(task.path().filename().string()));
+    }
+    return !receive_threads.empty();
+  };
+  EXPECT_TRUE(testing::wait_until(find_receive_threads));
+  ASSERT_EQ(receive_threads.size(), 1U) << "one receive thread for every socket";
+  EXPECT_EQ(receive_threads[0].first, "recv");
+  const pid_t tid = receive_threads[0].second;
+  sched_param param{};
+  EXPECT_EQ(sched_getscheduler(tid), SCHED_FIFO);
+  ASSERT_EQ(sched_getparam(tid, &param), 0);
+  EXPECT_EQ(param.sched_priority, 3);
 }
 
 TEST(Participant, MissingInterfaceIsAnErrorNamingIt) {
