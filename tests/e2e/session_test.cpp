@@ -160,8 +160,8 @@ TEST_F(SessionTest, KilledClientDampingFallbackDampsTheLoadedJoint) {
   // Damped, joint2 sinks under its 2 N·m load at about 2 / (kd 10 + friction 0.3) ≈ 0.19 rad/s.
   std::this_thread::sleep_for(200ms);
   const JointState state = joint_state();
-  EXPECT_LT(state.velocity[1], -0.1);
-  EXPECT_GT(state.velocity[1], -0.35);
+  EXPECT_LT(state.velocity[1], -0.1) << "joint2 at " << state.position[1] << " rad";
+  EXPECT_GT(state.velocity[1], -0.35) << "joint2 at " << state.position[1] << " rad";
 }
 
 TEST_F(SessionTest, KilledClientZeroTorqueFallbackLetsTheLoadedJointFall) {
