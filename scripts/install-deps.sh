@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Install the Debian (bookworm) packages robotd needs to build, test and run.
 #
-#   scripts/install-deps.sh
+#   scripts/install-deps.sh                  what building, testing and running need
+#   scripts/install-deps.sh --conformance    also what the conformance generators need to run
+#                                            the vendors' own code (docs/conformance.md)
 #
 # Installs only what is missing (checked with dpkg-query), so it is quick and safe to re-run;
 # apt-get update runs only when something is missing. Uses sudo when not root.
@@ -16,6 +18,14 @@ packages=(
   clang-format clang-tidy valgrind
   clang libclang-rt-14-dev
 )
+
+# Only for regenerating the conformance data from the vendors' code; CI replays the recorded data.
+if [[ ${1:-} == --conformance ]]; then
+  packages+=(python3-can python3-serial python3-numpy)
+elif (($# > 0)); then
+  echo "install-deps: unknown argument '$1' (expected nothing or --conformance)" >&2
+  exit 2
+fi
 
 # Installed when the archive has them (clang-tidy-22 comes from bookworm-security): lint runs
 # three times faster with it and falls back to clang-tidy (14) without it.
