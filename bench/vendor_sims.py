@@ -19,6 +19,10 @@ def free_tcp_port():
         return probe.getsockname()[1]
 
 
+# The simulators stand in for hardware with a CPU of its own: SCHED_FIFO, below robotd's loops.
+SIM_RT_PRIORITY = "10"
+
+
 class Simulator:
     """One simulator process, ready once it printed "ready"; stopped (SIGTERM) when the block ends."""
 
@@ -30,8 +34,9 @@ class Simulator:
         program = Path(bin_dir) / f"robotd-{self.vendor}-sim"
         if not program.exists():
             raise RuntimeError(f"{program} not found: build it first")
-        self.process = subprocess.Popen([str(program), *self.link_arguments(), "--control", self.control_path,
-                                         "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        arguments = [str(program), *self.link_arguments(), "--control", self.control_path,
+                     "--rt-priority", SIM_RT_PRIORITY, "--quiet"]
+        self.process = subprocess.Popen(arguments, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
         ready, _, _ = select.select([self.process.stdout], [], [], READY_TIMEOUT_S)
         line = self.process.stdout.readline().strip() if ready else ""
         if line != "ready":

@@ -60,7 +60,7 @@ SimProcess::SimProcess(std::string program, const std::string& stem, const std::
     : program_(std::move(program)),
       link_path_(std::move(link_path)),
       control_path_(unique_path(stem + "-ctl")),
-      arguments_{link_option, link_path_, "--control", control_path_} {
+      arguments_{link_option, link_path_, "--control", control_path_, "--rt-priority", std::to_string(kSimRtPriority)} {
   arguments_.insert(arguments_.end(), extra_args.begin(), extra_args.end());
   start();
 }

@@ -17,6 +17,10 @@
 
 namespace robotd::testing {
 
+/// Every simulator a test starts runs SCHED_FIFO at this priority, below robotd's loops: it
+/// stands in for hardware with a CPU of its own, which a loaded test machine must not starve.
+inline constexpr int kSimRtPriority = 10;
+
 class SimProcess {
  public:
   SimProcess(const SimProcess&) = delete;

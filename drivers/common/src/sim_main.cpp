@@ -1,9 +1,13 @@
 #include "robotd/sim_control/sim_main.hpp"
 
+#include <cerrno>
 #include <iostream>
+#include <sched.h>
 
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
+
+#include "errno_text.hpp"
 
 namespace robotd::sim_control {
 namespace {
@@ -27,6 +31,22 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
 int usage_error(const std::string& program, const std::string& message) {
   std::cerr << program << ": " << message << "\n";
   return kExitUsage;
+}
+
+void add_rt_priority_option(CLI::App& app, int& priority) {
+  app.add_option("--rt-priority", priority,
+                 "run SCHED_FIFO at this priority (1-99), like hardware with a CPU of its own; 0: normal scheduling")
+      ->check(CLI::Range(0, 99))
+      ->capture_default_str();
+}
+
+void run_at_rt_priority(int priority) {
+  if (priority == 0) return;
+  const sched_param param{.sched_priority = priority};
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    spdlog::warn("cannot run SCHED_FIFO at priority {} ({}): normal scheduling, so load on this host can delay replies",
+                 priority, transport::errno_text(errno));
+  }
 }
 
 void log_to_stderr(const std::string& program, bool quiet) {

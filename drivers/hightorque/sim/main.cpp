@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
                  "N·m per board torque unit (default: the model's SDK factor, 0.01 for unknown models)")
       ->check(CLI::Range(1e-6, 10.0));
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  int rt_priority = 0;
+  robotd::sim_control::add_rt_priority_option(app, rt_priority);
   if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
 
   // The buses in command-line order: that is the control channel's "bus" index.
@@ -100,6 +102,7 @@ int main(int argc, char** argv) {
   if (options.model.empty() || options.model.size() > 59) return fail("--model needs a name of 1 … 59 characters");
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);
+  robotd::sim_control::run_at_rt_priority(rt_priority);
 
   sim::Simulator simulator(options);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);

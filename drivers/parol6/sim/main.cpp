@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   app.add_option("--initial-steps", initial_steps, "the step counters at start: a,b,c,d,e,f (default all 0)");
   app.add_flag("--no-gripper", no_gripper, "no gripper on the board's CAN bus (the reply keeps its constants)");
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  int rt_priority = 0;
+  robotd::sim_control::add_rt_priority_option(app, rt_priority);
   if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
   if (options.pty_path.empty()) return fail("--pty needs a path");
   options.gripper = !no_gripper;
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
   }
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);
+  robotd::sim_control::run_at_rt_priority(rt_priority);
 
   robotd::parol6::sim::Simulator simulator(options);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);

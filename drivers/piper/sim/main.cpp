@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--initial", initial, "the joints at start, rad: q1,q2,q3,q4,q5,q6 (default all 0)");
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  int rt_priority = 0;
+  robotd::sim_control::add_rt_priority_option(app, rt_priority);
   if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
 
   if (standin_option->count() == 0 && interface_option->count() == 0) {
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
   }
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);
+  robotd::sim_control::run_at_rt_priority(rt_priority);
 
   robotd::piper::sim::Simulator simulator(options);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);

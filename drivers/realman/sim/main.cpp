@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"list", "legacy", "scalar"}))
       ->capture_default_str();
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  int rt_priority = 0;
+  robotd::sim_control::add_rt_priority_option(app, rt_priority);
   if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
   options.generation = *robotd::realman::sim::parse_generation(generation);
   options.error_shape = *robotd::realman::sim::parse_error_shape(error_shape);
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
   if (!model) return fail("--model \"" + options.model + "\" is not a model it knows (" + known_models() + ")");
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);
+  robotd::sim_control::run_at_rt_priority(rt_priority);
 
   robotd::realman::sim::Simulator simulator(options, *model);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);

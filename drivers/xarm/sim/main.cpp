@@ -60,6 +60,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--control", options.control_path, "the control channel's unix stream socket path (tests)");
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  int rt_priority = 0;
+  robotd::sim_control::add_rt_priority_option(app, rt_priority);
   if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
   options.report_port = report_port(real_port);
   options.normal_report_port = report_port(normal_port);
@@ -71,6 +73,7 @@ int main(int argc, char** argv) {
   }
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);
+  robotd::sim_control::run_at_rt_priority(rt_priority);
 
   robotd::xarm::sim::Simulator simulator(options, *model);
   if (auto opened = simulator.open(); !opened) return fail(opened.error().message);

@@ -30,10 +30,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
+  int rt_priority = 0;
+  robotd::sim_control::add_rt_priority_option(app, rt_priority);
   if (const auto exit_status = robotd::sim_control::parse_command_line(app, argc, argv)) return *exit_status;
   if (options.pty_path.empty()) return robotd::sim_control::usage_error(kProgram, "--pty needs a path");
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);
+  robotd::sim_control::run_at_rt_priority(rt_priority);
 
   robotd::imu::sim::ImuSimulator simulator(options);
   if (auto opened = simulator.open(); !opened)

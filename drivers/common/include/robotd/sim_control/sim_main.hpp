@@ -19,6 +19,16 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv);
 /// "<program>: <message>" on stderr; returns kExitUsage.
 int usage_error(const std::string& program, const std::string& message);
 
+/// Adds `--rt-priority N` (SCHED_FIFO priority 1..99; 0, the default, keeps normal scheduling).
+void add_rt_priority_option(CLI::App& app, int& priority);
+
+/// Runs the calling thread, and the threads it starts later, SCHED_FIFO at `priority` (if not 0):
+/// a simulator stands in for hardware, which has a CPU of its own, so ordinary load on the host
+/// (compilers, sanitized tests) must not silence it for tens of milliseconds and fault robotd's
+/// link. Tests and scripts/demo use a priority below robotd's loops. Where the system refuses
+/// (no CAP_SYS_NICE, no RLIMIT_RTPRIO), logs a warning and goes on with normal scheduling.
+void run_at_rt_priority(int priority);
+
 /// spdlog to stderr under `program`; warnings and errors only when `quiet`.
 void log_to_stderr(const std::string& program, bool quiet);
 
