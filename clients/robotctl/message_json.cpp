@@ -62,7 +62,9 @@ Json to_json(const robotd::SessionInfo& session) {
               {"timeout_ms", session.timeout_ms},
               {"time_left_ms", session.time_left_ms},
               {"granted_at", to_json(session.granted_at)},
-              {"commands_accepted", session.commands_accepted}};
+              {"commands_accepted", session.commands_accepted},
+              {"policy_name", session.policy_name},
+              {"policy_file_name", session.policy_file_name}};
 }
 
 Json to_json(const robotd::SurfaceCounters& surface) {

@@ -1,5 +1,6 @@
 #include "message_text.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdio>
@@ -114,14 +115,36 @@ std::string behavior_text(robotd::Behavior requested, robotd::Behavior applied) 
   return text;
 }
 
+namespace {
+
+std::string policy_text(const robotd::SessionInfo& session) {
+  if (session.policy_file_name.empty()) return session.policy_name.empty() ? "-" : session.policy_name;
+  return (session.policy_name.empty() ? "-" : session.policy_name) + " (" + session.policy_file_name + ")";
+}
+
+}  // namespace
+
 std::string session_table(const robotd::SessionStatus& status) {
   if (status.sessions.empty()) return "no active sessions\n";
-  TextTable table({"SESSION", "NODE", "DEVICE", "MOTORS", "MODE", "ON TIMEOUT", "TIME LEFT", "COMMANDS"});
+  // The POLICY column only when a session named one (most clients do not).
+  const bool policies = std::any_of(status.sessions.begin(), status.sessions.end(), [](const auto& session) {
+    return !session.policy_name.empty() || !session.policy_file_name.empty();
+  });
+  std::vector<std::string> headers{"SESSION", "NODE",       "DEVICE",    "MOTORS",
+                                   "MODE",    "ON TIMEOUT", "TIME LEFT", "COMMANDS"};
+  if (policies) headers.emplace_back("POLICY");
+  TextTable table(std::move(headers));
   for (const auto& session : status.sessions) {
-    table.add_row({session.uuid, session.node_name, session.device, id_ranges(session.motor_ids),
-                   std::string(robotd::to_string(session.control_mode)),
-                   behavior_text(session.default_behavior, session.applied_behavior),
-                   std::to_string(session.time_left_ms) + " ms", std::to_string(session.commands_accepted)});
+    std::vector<std::string> row{session.uuid,
+                                 session.node_name,
+                                 session.device,
+                                 id_ranges(session.motor_ids),
+                                 std::string(robotd::to_string(session.control_mode)),
+                                 behavior_text(session.default_behavior, session.applied_behavior),
+                                 std::to_string(session.time_left_ms) + " ms",
+                                 std::to_string(session.commands_accepted)};
+    if (policies) row.push_back(policy_text(session));
+    table.add_row(std::move(row));
   }
   return table.render();
 }

@@ -61,6 +61,8 @@ void session_info_to_c(const SessionInfo& in, robotd_msgs_msg_dds__SessionInfo_&
   out.granted_at.sec = in.granted_at.sec;
   out.granted_at.nanosec = in.granted_at.nanosec;
   out.commands_accepted = in.commands_accepted;
+  out.policy_name = c_string(in.policy_name);
+  out.policy_file_name = c_string(in.policy_file_name);
 }
 
 void surface_to_c(const SurfaceCounters& in, robotd_msgs_msg_dds__SurfaceCounters_& out, CArena& arena) {
@@ -98,6 +100,8 @@ SessionInfo session_info_from_c(const robotd_msgs_msg_dds__SessionInfo_& in) {
   out.time_left_ms = in.time_left_ms;
   out.granted_at = Time{in.granted_at.sec, in.granted_at.nanosec};
   out.commands_accepted = in.commands_accepted;
+  out.policy_name = copy_string(in.policy_name);
+  out.policy_file_name = copy_string(in.policy_file_name);
   return out;
 }
 
@@ -414,6 +418,8 @@ void Wire<RequestControlRequest>::to_c(const RequestControlRequest& in, C& out, 
   view_sequence(out.default_kp, in.default_kp);
   view_sequence(out.default_kd, in.default_kd);
   out.device = c_string(in.device);
+  out.policy_name = c_string(in.policy_name);
+  out.policy_file_name = c_string(in.policy_file_name);
 }
 RequestControlRequest Wire<RequestControlRequest>::from_c(const C& in) {
   RequestControlRequest out;
@@ -425,6 +431,8 @@ RequestControlRequest Wire<RequestControlRequest>::from_c(const C& in) {
   out.default_kp = copy_sequence<float>(in.default_kp);
   out.default_kd = copy_sequence<float>(in.default_kd);
   out.device = copy_string(in.device);
+  out.policy_name = copy_string(in.policy_name);
+  out.policy_file_name = copy_string(in.policy_file_name);
   return out;
 }
 

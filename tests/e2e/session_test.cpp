@@ -189,6 +189,57 @@ TEST_F(SessionTest, KeepFallbackHoldsPosition) {
   EXPECT_LT(max_error(joint_state(), target), 0.02) << "KEEP must hold the last target";
 }
 
+// The PI Plus shows the policy in command in /session_status; a robotd session names its own.
+TEST_F(SessionTest, SessionsNameTheirPolicyInSessionStatus) {
+  start_robotd();
+  SessionRequest legs = arm_request({0, 1, 2}, Behavior::kKeep, 10'000ms);
+  legs.policy_name = "walk";
+  legs.policy_file_name = "/opt/policies/walk_v3.onnx";
+  auto walking = client().request_control(legs);
+  ASSERT_TRUE(walking) << walking.error().message;
+  auto unnamed = client().request_control(arm_request({3}, Behavior::kKeep, 10'000ms));
+  ASSERT_TRUE(unnamed) << unnamed.error().message;
+
+  auto status = client().session_status(2s);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status.value().policy_name, "walk");
+  EXPECT_EQ(status.value().policy_file_name, "/opt/policies/walk_v3.onnx");
+  ASSERT_EQ(status.value().sessions.size(), 2U);
+  for (const auto& session : status.value().sessions) {
+    const bool is_walking = session.uuid == walking.value().session_id();
+    EXPECT_EQ(session.policy_name, is_walking ? "walk" : "") << session.uuid;
+    EXPECT_EQ(session.policy_file_name, is_walking ? "/opt/policies/walk_v3.onnx" : "") << session.uuid;
+  }
+
+  // The newest session that names a policy is the one /session_status names; when it ends,
+  // the one before it is named again.
+  SessionRequest arms = arm_request({4, 5}, Behavior::kKeep, 10'000ms);
+  arms.policy_name = "wave";
+  auto waving = client().request_control(arms);
+  ASSERT_TRUE(waving) << waving.error().message;
+  status = client().session_status(2s);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status.value().policy_name, "wave");
+  EXPECT_EQ(status.value().policy_file_name, "");
+  ASSERT_TRUE(waving.value().release(Behavior::kKeep));
+  status = client().session_status(2s);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status.value().policy_name, "walk");
+
+  // A name beyond its limit is refused like every other over-long field, and nothing is granted.
+  SessionRequest oversized = arm_request({4}, Behavior::kKeep, 10'000ms);
+  oversized.policy_file_name = std::string(1024, 'f');
+  auto refused = client().request_control(oversized);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("policy_file_name is 1024 bytes long; the limit is 1023 bytes"),
+            std::string::npos)
+      << refused.error().message.substr(0, 300);
+  status = client().session_status(2s);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status.value().sessions.size(), 2U);
+  EXPECT_NE(robotd_->log().find("policy 'walk' from '/opt/policies/walk_v3.onnx'"), std::string::npos);
+}
+
 // Issue test 6.
 TEST_F(SessionTest, ResetZeroRefusedWhileSessionActiveAndWorksWithout) {
   start_robotd();

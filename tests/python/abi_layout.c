@@ -33,7 +33,8 @@ int main(void) {
                                   FIELD(robotd_session_request, motor_count), FIELD(robotd_session_request, mode),
                                   FIELD(robotd_session_request, on_timeout), FIELD(robotd_session_request, timeout_ms),
                                   FIELD(robotd_session_request, default_kp), FIELD(robotd_session_request, default_kd),
-                                  FIELD(robotd_session_request, on_release)));
+                                  FIELD(robotd_session_request, on_release), FIELD(robotd_session_request, policy_name),
+                                  FIELD(robotd_session_request, policy_file_name)));
   STRUCT(robotd_command, (FIELD(robotd_command, motor_ids), FIELD(robotd_command, count),
                           FIELD(robotd_command, positions), FIELD(robotd_command, velocities),
                           FIELD(robotd_command, kp), FIELD(robotd_command, kd), FIELD(robotd_command, torques)));

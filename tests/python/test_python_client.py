@@ -43,7 +43,7 @@ class WithoutRobotdTest(unittest.TestCase):
     """What a caller gets before anything reaches robotd."""
 
     def test_versions(self):
-        self.assertEqual(robotd.C_API_VERSION, 2)
+        self.assertEqual(robotd.C_API_VERSION, 3)
         self.assertRegex(robotd.__version__, r"^\d+\.\d+\.\d+$")
 
     def test_no_robotd_on_the_domain_is_not_available_and_says_what_to_check(self):

@@ -5,6 +5,7 @@
 #include "arguments.hpp"
 #include "errors.hpp"
 #include "handles.hpp"
+#include "robotd/limits.hpp"
 
 using robotd::c::array_argument;
 using robotd::c::behavior_argument;
@@ -40,6 +41,10 @@ robotd::SessionRequest to_session_request(const robotd_session_request& request)
   converted.default_kp = array_argument(request.default_kp, request.motor_count);
   converted.default_kd = array_argument(request.default_kd, request.motor_count);
   converted.on_release = behavior_argument(request.on_release, "request->on_release");
+  converted.policy_name =
+      text_argument(request.policy_name, "request->policy_name", robotd::limits::kPolicyNameBytes + 1);
+  converted.policy_file_name =
+      text_argument(request.policy_file_name, "request->policy_file_name", robotd::limits::kPolicyFileNameBytes + 1);
   return converted;
 }
 

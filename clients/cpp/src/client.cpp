@@ -87,6 +87,8 @@ Result<Session> Client::request_control(const SessionRequest& request) {
   wire_request.timeout_ms = static_cast<std::int32_t>(request.timeout.count());
   wire_request.default_kp = request.default_kp;
   wire_request.default_kd = request.default_kd;
+  wire_request.policy_name = request.policy_name;
+  wire_request.policy_file_name = request.policy_file_name;
   auto response = core_->request_control.call(wire_request, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/request_control", response.value().message);

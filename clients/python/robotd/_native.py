@@ -8,7 +8,7 @@ from ctypes import c_size_t, c_uint64, c_void_p
 from . import errors
 from .types import DeviceInfo, DeviceState, DeviceStatus, JointState
 
-C_API_VERSION = 2  # the robotd/robotd.h this module mirrors
+C_API_VERSION = 3  # the robotd/robotd.h this module mirrors
 MAX_JOINTS = 64
 NAME_CAPACITY = 64
 UUID_CAPACITY = 40
@@ -35,7 +35,8 @@ class DeviceInfoStruct(Structure):
 class SessionRequest(Structure):
     _fields_ = [("device", c_char_p), ("motor_ids", POINTER(c_int32)), ("motor_count", c_size_t), ("mode", _Enum),
                 ("on_timeout", _Enum), ("timeout_ms", c_int32), ("default_kp", POINTER(c_float)),
-                ("default_kd", POINTER(c_float)), ("on_release", _Enum)]
+                ("default_kd", POINTER(c_float)), ("on_release", _Enum), ("policy_name", c_char_p),
+                ("policy_file_name", c_char_p)]
 
 
 class Command(Structure):

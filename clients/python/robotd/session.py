@@ -16,22 +16,25 @@ class Session:
         with robotd.Session(device="arm", motors=[0, 1, 2]) as session:
             session.command(positions=[0.5, 0.0, 0.3])
 
+    `policy` and `policy_file` name who commands (e.g. "walk", "walk_v3.onnx"); /session_status
+    shows them to everyone.
+
     Without `client`, the session connects a Client of its own (from the environment) and closes
     it with the session. Raises Refused, naming the holder, when another session has a motor."""
 
     def __init__(self, device=None, motors=None, *, mode=Mode.POSITION, on_timeout=Behavior.DAMPING, timeout=1.0,
-                 kp=None, kd=None, on_release=Behavior.KEEP, client=None):
+                 kp=None, kd=None, on_release=Behavior.KEEP, policy=None, policy_file=None, client=None):
         self._handle = None
         self._own_client = client is None
         self._client = Client() if client is None else client
         try:
             self._request(device, motors, Mode.parse(mode), Behavior.parse(on_timeout), timeout, kp, kd,
-                          Behavior.parse(on_release))
+                          Behavior.parse(on_release), (policy, policy_file))
         except BaseException:
             self._close_own_client()
             raise
 
-    def _request(self, device, motors, mode, on_timeout, timeout, kp, kd, on_release):
+    def _request(self, device, motors, mode, on_timeout, timeout, kp, kd, on_release, policy):
         request = _native.SessionRequest()
         check(lib.robotd_session_request_init(byref(request)))
         device_text = optional_text(device)
@@ -46,6 +49,7 @@ class Session:
         request.timeout_ms = milliseconds(timeout, "timeout")
         request.default_kp, request.default_kd = (pointer(gain, c_float) for gain in gains)
         request.on_release = on_release
+        request.policy_name, request.policy_file_name = (optional_text(text) for text in policy)
         handle = c_void_p()
         check(lib.robotd_request_control(self._client.handle, byref(request), byref(handle)))
         self._handle = handle

@@ -103,6 +103,8 @@ Verb add_acquire_verb(CLI::App& app) {
       ->capture_default_str();
   add_behavior_option(*command, "--on-release", options->request.on_release,
                       "What robotd does to the motors when robotctl releases them on Ctrl-C");
+  command->add_option("--policy", options->request.policy_name, "The policy that commands, shown in robotctl sessions");
+  command->add_option("--policy-file", options->request.policy_file_name, "The file that policy was loaded from");
   command->footer(
       "Prints 'uuid <uuid>  session <id>' and what was granted on one line, then sends keepalives every quarter of "
       "the timeout. Nothing moves: use it to keep other clients off the motors. The uuid is the session's "

@@ -62,6 +62,8 @@ std::optional<Oversize> find_oversize(const RequestControlRequest& request) {
   return Check()
       .text("node_name", request.node_name, limits::kNodeNameBytes)
       .text("device", request.device, limits::kDeviceNameBytes)
+      .text("policy_name", request.policy_name, limits::kPolicyNameBytes)
+      .text("policy_file_name", request.policy_file_name, limits::kPolicyFileNameBytes)
       .list("motor_ids", request.motor_ids)
       .list("default_kp", request.default_kp)
       .list("default_kd", request.default_kd)

@@ -1,5 +1,7 @@
 #include "service/session_service.hpp"
 
+#include <limits>
+
 #include <spdlog/spdlog.h>
 
 #include "app/log_text.hpp"
@@ -97,8 +99,14 @@ RequestControlResponse SessionService::request_control(const RequestControlReque
       response.message +=
           " (" + std::string(to_string(record.requested_behavior)) + " is not supported by this device)";
     }
-    spdlog::info("session {} granted to node '{}': {}", record.session_id, app::log_text(record.node_name),
-                 response.message);
+    // The policy's names are the client's text: the log shows them escaped and bounded.
+    std::string logged = response.message;
+    if (!record.policy_name.empty() || !record.policy_file_name.empty()) {
+      response.message += "; policy '" + record.policy_name + "' from '" + record.policy_file_name + "'";
+      logged +=
+          "; policy '" + app::log_text(record.policy_name) + "' from '" + app::log_text(record.policy_file_name) + "'";
+    }
+    spdlog::info("session {} granted to node '{}': {}", record.session_id, app::log_text(record.node_name), logged);
   }
   on_change_();
   return response;
@@ -228,7 +236,16 @@ SessionStatus SessionService::status(std::int64_t now_ns) const {
   SessionStatus status;
   status.header.stamp = Time::from_ns(rt::realtime_now_ns());
   const std::lock_guard lock(mutex_);
+  std::int64_t newest_policy_ns = std::numeric_limits<std::int64_t>::min();
   for (const auto& record : table_.sessions()) {
+    // The PI Plus runs one policy at a time and names it here: robotd names the newest session's
+    // that named one (each session's own are in its SessionInfo).
+    const bool names_a_policy = !record.policy_name.empty() || !record.policy_file_name.empty();
+    if (names_a_policy && record.granted_ns >= newest_policy_ns) {
+      status.policy_name = record.policy_name;
+      status.policy_file_name = record.policy_file_name;
+      newest_policy_ns = record.granted_ns;
+    }
     status.active_uuids.push_back(record.session_id);
     status.node_names.push_back(record.node_name);
     status.motor_counts.push_back(static_cast<std::int32_t>(record.motor_ids.size()));
@@ -244,6 +261,8 @@ SessionStatus SessionService::status(std::int64_t now_ns) const {
     info.time_left_ms = static_cast<std::int32_t>(record.time_left_ms(now_ns));
     info.granted_at = Time::from_ns(record.granted_wall_ns);
     info.commands_accepted = record.commands_accepted;
+    info.policy_name = record.policy_name;
+    info.policy_file_name = record.policy_file_name;
     status.sessions.push_back(std::move(info));
   }
   status.state = status.sessions.empty() ? "idle" : "active";

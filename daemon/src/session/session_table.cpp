@@ -176,6 +176,8 @@ Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, 
   record.timeout_ms = request.timeout_ms;
   record.default_kp = request.default_kp;
   record.default_kd = request.default_kd;
+  record.policy_name = request.policy_name;
+  record.policy_file_name = request.policy_file_name;
   record.granted_ns = now_ns;
   record.granted_wall_ns = wall_ns;
   record.last_command_ns = now_ns;

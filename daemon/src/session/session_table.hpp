@@ -40,6 +40,8 @@ struct SessionRecord {
   std::int32_t timeout_ms = 0;
   std::vector<float> default_kp;  // parallel to motor_ids, or empty
   std::vector<float> default_kd;
+  std::string policy_name;  // who commands, as the request named it ("" = not named)
+  std::string policy_file_name;
   std::int64_t granted_ns = 0;       // CLOCK_MONOTONIC
   std::int64_t granted_wall_ns = 0;  // CLOCK_REALTIME, for display
   std::int64_t last_command_ns = 0;  // CLOCK_MONOTONIC of the last accepted command

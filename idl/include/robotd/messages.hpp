@@ -120,6 +120,8 @@ struct SessionInfo {
   std::int32_t time_left_ms = 0;
   Time granted_at;  // CLOCK_REALTIME
   std::uint64_t commands_accepted = 0;
+  std::string policy_name;  // as the session named them in RequestControl
+  std::string policy_file_name;
 };
 
 /// One service's requests as robotd's DDS surface saw them.
@@ -140,6 +142,8 @@ struct SurfaceCounters {
 struct SessionStatus {
   Header header;
   std::string state;  // "idle" or "active"
+  // The newest session's that named a policy (the PI Plus runs one policy at a time; every
+  // session's own are in `sessions`).
   std::string policy_name;
   std::string policy_file_name;
   // The PI Plus's parallel arrays. active_uuids holds each session's public id: a session's
@@ -230,6 +234,9 @@ struct RequestControlRequest {
   std::vector<float> default_kp;  // empty or one per motor
   std::vector<float> default_kd;
   std::string device;  // "" = the only device
+  // Who will command, shown in /session_status: e.g. "walk" and "walk_v3.onnx" ("" = none).
+  std::string policy_name;
+  std::string policy_file_name;
 };
 struct RequestControlResponse {
   bool success = false;

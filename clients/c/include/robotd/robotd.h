@@ -57,7 +57,7 @@ extern "C" {
 /* This is a C header: typedef is its only spelling. NOLINTBEGIN(modernize-use-using) */
 
 /* The version of this API: changes when a function or struct of this header changes. */
-#define ROBOTD_C_API_VERSION 2
+#define ROBOTD_C_API_VERSION 3
 
 #define ROBOTD_MAX_JOINTS 64     /* joints per device (the driver API's limit) */
 #define ROBOTD_NAME_CAPACITY 64  /* device, driver, model and joint names, NUL included */
@@ -172,7 +172,9 @@ typedef struct robotd_session_request {
   int32_t timeout_ms;         /* default 1000: silence after which robotd ends the session */
   const float* default_kp;    /* NULL, or motor_count gains for the session's commands */
   const float* default_kd;
-  robotd_behavior on_release; /* default KEEP: what robotd_session_free's release asks for */
+  robotd_behavior on_release;   /* default KEEP: what robotd_session_free's release asks for */
+  const char* policy_name;      /* NULL or "" = none; else who commands, shown in /session_status (<= 255 bytes) */
+  const char* policy_file_name; /* NULL or "" = none; the file that policy was loaded from (<= 1023 bytes) */
 } robotd_session_request;
 
 ROBOTD_API robotd_status robotd_session_request_init(robotd_session_request* request);

@@ -27,6 +27,9 @@ struct SessionRequest {
   std::vector<float> default_kp;  // empty, or one per motor
   std::vector<float> default_kd;
   Behavior on_release = Behavior::kKeep;  // what the destructor's release asks for
+  // Who will command, shown to everyone in /session_status (e.g. "walk", "walk_v3.onnx").
+  std::string policy_name;
+  std::string policy_file_name;
 };
 
 /// One command. Arrays are parallel to motor_ids (empty motor_ids = the session's motors in
