@@ -66,8 +66,9 @@ class ReportEnvironment : public testing::Environment {
   }
 };
 
-[[maybe_unused]] const testing::Environment* const kReport = testing::AddGlobalTestEnvironment(
-    new ReportEnvironment);  // NOLINT(cppcoreguidelines-owning-memory): GoogleTest owns it
+// Registered before main(), the one way with GoogleTest's own main; GoogleTest owns it.
+// NOLINTNEXTLINE(cert-err58-cpp,bugprone-throwing-static-initialization,cppcoreguidelines-owning-memory)
+[[maybe_unused]] const testing::Environment* const kReport = testing::AddGlobalTestEnvironment(new ReportEnvironment);
 
 }  // namespace
 
