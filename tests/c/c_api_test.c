@@ -187,6 +187,7 @@ static bool request_accessors_and_release(fixture* f) {
   CHECK(request.mode == ROBOTD_MODE_POSITION && request.on_timeout == ROBOTD_BEHAVIOR_DAMPING);
   CHECK(request.timeout_ms == 1000 && request.on_release == ROBOTD_BEHAVIOR_KEEP);
   CHECK(request.default_kp == NULL && request.default_kd == NULL);
+  CHECK(request.policy_name == NULL && request.policy_file_name == NULL);
 
   request.device = NULL; /* robotd's only device */
   request.timeout_ms = 5000;
@@ -423,6 +424,18 @@ static bool invalid_arguments_are_named(fixture* f) {
   CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_request_control(f->client, &request, &session),
              "request->device is 64 bytes long: expected at most 63");
   request.device = "arm";
+  char long_policy[1025];
+  memset(long_policy, 'p', sizeof long_policy - 1);
+  long_policy[sizeof long_policy - 1] = '\0';
+  request.policy_file_name = long_policy;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_request_control(f->client, &request, &session),
+             "request->policy_file_name is 1024 bytes long: expected at most 1023");
+  request.policy_file_name = NULL;
+  long_policy[256] = '\0';
+  request.policy_name = long_policy;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_request_control(f->client, &request, &session),
+             "request->policy_name is 256 bytes long: expected at most 255");
+  request.policy_name = NULL;
   CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_request_control(f->client, &request, NULL), "session is NULL");
   CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_request_control(f->client, NULL, &session), "request is NULL");
   CHECK(session == NULL);

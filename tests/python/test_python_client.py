@@ -124,6 +124,12 @@ class ClientTest(unittest.TestCase):
                 self.client.session(device="arm", motors=[2, 3])
         self.assertIn("motor(s) 2 held by node 'python_test'", str(raised.exception))
 
+    def test_a_session_may_name_its_policy_within_the_limits(self):
+        with self.client.session(device="arm", motors=[2], policy="walk", policy_file="walk_v3.onnx") as session:
+            self.assertEqual(session.motors, (2,))
+        with self.assertRaisesRegex(robotd.InvalidArgument, "request->policy_name is 256 bytes long"):
+            self.client.session(device="arm", motors=[2], policy="p" * 256)
+
     def test_malformed_commands_raise_before_anything_is_sent(self):
         with self.client.session(device="arm", motors=[4, 5], timeout=1.0) as session:
             with self.assertRaisesRegex(ValueError, "positions: 1 values for 2 motors"):
