@@ -39,8 +39,8 @@ constexpr std::array<OpSpec, 18> kOps{{
     {"disable", R"({}: DISABLE: motion commands are ignored, the steppers stay energised)", driver::kNeedsFreeMotors},
     {"clear_error", R"({}: CLEAR ERROR (resets the board's homing state))", driver::kNeedsFreeMotors},
     {"output", R"({"out1": bool, "out2": bool}: set the isolated outputs)"},
-    {"gripper", R"({"position": 0..255 (0 open), "speed": 0..255, "current_a": 0.1..1.0, "activate": bool}: )"
-                R"(move the SSG-48 gripper)"},
+    {"gripper", R"({"position": 0..255 (0 open), "speed": 0..255, "current_a": 0..1.3, "activate": bool}: )"
+                R"(move the SSG-48 gripper (a warning above 0.7 A and below 0.15 A))"},
     {"gripper_calibrate", R"({}: calibrate and activate the gripper)"},
     {"gripper_clear_error", R"({}: clear the gripper's error)"},
     {"io", R"({}: IN1, IN2, OUT1, OUT2 and the E-stop input)"},

@@ -307,6 +307,23 @@ TEST_F(Parol6DriverTest, GripperAndOutputsReachTheBoard) {
   EXPECT_NE(bad.error().message.find("args.position"), std::string::npos) << bad.error().message;
 }
 
+TEST_F(Parol6DriverTest, GripperCurrentTakesTheCommandersRangeWithItsCautions) {
+  ASSERT_TRUE(driver_.connect());
+  const auto normal = driver_.call("gripper", {{"position", 10}, {"current_a", 0.5}});
+  ASSERT_TRUE(normal);
+  EXPECT_FALSE(normal.value().contains("warning")) << normal.value().dump();
+  const auto strong = driver_.call("gripper", {{"position", 10}, {"speed", 200}, {"current_a", 1.3}});
+  ASSERT_TRUE(strong) << "1300 mA is the top of the gripper's range, not an error";
+  EXPECT_NE(strong.value()["warning"].get<std::string>().find("above 700 mA"), std::string::npos)
+      << strong.value().dump();
+  const auto weak = driver_.call("gripper", {{"position", 10}, {"current_a", 0.0}});
+  ASSERT_TRUE(weak);
+  EXPECT_NE(weak.value()["warning"].get<std::string>().find("below 150 mA"), std::string::npos) << weak.value().dump();
+  const auto too_much = driver_.call("gripper", {{"position", 10}, {"current_a", 1.4}});
+  ASSERT_FALSE(too_much);
+  EXPECT_NE(too_much.error().message.find("args.current_a"), std::string::npos) << too_much.error().message;
+}
+
 TEST_F(Parol6DriverTest, ALostByteCostsOneFrameNotTheLink) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
