@@ -1,8 +1,11 @@
 #include "robotd_results.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
+#include <stdexcept>
+#include <string>
 
 #include "codec/joint_units.hpp"
 #include "codec/parol6_frames.hpp"
