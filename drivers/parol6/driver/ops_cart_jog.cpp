@@ -17,10 +17,9 @@ namespace {
 // The commander's Cartesian jog maxima (PAROL6_ROBOT.py): 60 mm/s and 25°/s.
 constexpr double kMaxLinearJogMps = 0.06;
 constexpr double kMaxAngularJogRadS = 25.0 * std::numbers::pi / 180.0;
-const std::vector<std::string> kAxes{"x", "y", "z", "rx", "ry", "rz"};
 
 /// `pose` moved by `amount` (m, or rad for the rotations) along or about axis `axis` (0 … 5, the
-/// order of kAxes) of the base frame (about the tool point) or of the tool frame.
+/// order of the op's "axis" choices) of the base frame (about the tool point) or of the tool frame.
 Eigen::Isometry3d jogged(const Eigen::Isometry3d& pose, std::size_t axis, double amount, bool tool_frame) {
   const Eigen::Vector3d direction = Eigen::Vector3d::Unit(static_cast<Eigen::Index>(axis % 3));
   Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
@@ -43,13 +42,14 @@ Result<nlohmann::json> Parol6Ops::cart_jog(const nlohmann::json& args) {
   JsonReader& reader = arguments.reader();
   reader.require("axis", R"("x", "y", "z" (velocity in m/s) or "rx", "ry", "rz" (rad/s))");
   reader.require("velocity", "a signed speed: m/s along x/y/z, rad/s about rx/ry/rz");
-  const auto axis_name = reader.string("axis", kAxes);
+  const std::vector<std::string> axes{"x", "y", "z", "rx", "ry", "rz"};  // indices as jogged() takes them
+  const auto axis_name = reader.string("axis", axes);
   const auto velocity = reader.number("velocity");
   const double duration = reader.number_or("duration_s", 1.0, NumberRange{.min = 0.05, .max = 10});
   const std::string frame = reader.string_or("frame", "base", {"base", "tool"});
-  const auto axis = static_cast<std::size_t>(std::find(kAxes.begin(), kAxes.end(), axis_name.value_or("")) -
-                                             kAxes.begin());  // kAxes.size() if none
-  if (velocity && axis < kAxes.size()) {
+  const auto axis = static_cast<std::size_t>(std::find(axes.begin(), axes.end(), axis_name.value_or("")) -
+                                             axes.begin());  // axes.size() if none
+  if (velocity && axis < axes.size()) {
     const double limit = axis < 3 ? kMaxLinearJogMps : kMaxAngularJogRadS;
     if (std::fabs(*velocity) > limit) {
       reader.error("velocity", "expected at most " + std::to_string(limit) + (axis < 3 ? " m/s" : " rad/s") +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vector_file.hpp"
@@ -29,11 +30,14 @@ void mismatches(const json& vendor, const json& robotd, const std::string& path,
                 std::vector<std::string>& out) {
   if (robotd.is_object() && vendor.is_object()) {
     for (const auto& [key, value] : robotd.items()) {
-      if (!vendor.contains(key)) {
-        out.push_back(path + "/" + key);
-        continue;
+      std::string field = path;
+      field += '/';
+      field += key;
+      if (vendor.contains(key)) {
+        mismatches(vendor.at(key), value, field, tolerance, out);
+      } else {
+        out.push_back(std::move(field));
       }
-      mismatches(vendor.at(key), value, path + "/" + key, tolerance, out);
     }
     return;
   }
@@ -93,7 +97,7 @@ Verdict judge(const Differences& differences, std::string_view group, std::strin
   for (const std::string& field : fields) {
     const json::json_pointer pointer(field);
     const json theirs = vendor_result.contains(pointer) ? vendor_result.at(pointer) : json();
-    const json ours = robotd.at(pointer);
+    const json& ours = robotd.at(pointer);
     const json documented = differences.documented(group, vendor, field, vector);
     if (!documented.is_null() && same(documented, ours, relative_tolerance)) {
       verdict.outcome = verdict.outcome == Outcome::failed ? Outcome::failed : Outcome::deliberate_difference;
