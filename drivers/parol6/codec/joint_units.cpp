@@ -1,5 +1,7 @@
-// The PAROL6 joint table of parol6_serial.md §10 and the microstep ⇄ SI conversions both hosts
-// use: rad = steps · 2π / 6400 / gear ratio.
+// The PAROL6 joint table of parol6_serial.md §10 and the microstep ⇄ SI conversions, computed
+// with the same floating-point operations, in the same order, as the vendor's Python API
+// (PCrnjak/PAROL6-python-API parol6/config.py) so that robotd sends the step it would send;
+// tests/conformance/parol6 checks them against both vendor codebases.
 #include "joint_units.hpp"
 
 #include <array>
@@ -32,39 +34,62 @@ constexpr JointUnits joint(double gear_ratio, double min_deg, double max_deg, st
 // Gear ratios and limits (degrees) from §10.2, standby counters from §10.3 (the firmware's
 // post-homing values: 90°, −90°, 180°, 0°, 0°, 180°), maximum speeds from §10.4.
 constexpr std::array<JointUnits, kJoints> kJointUnits{{
-    joint(6.4, -123.046875, 123.046875, 10240, 15000),           // J1 base, 96/15
-    joint(20.0, -145.0088, -3.375, -32000, 25000),               // J2 shoulder
-    joint(20.0 * 38.0 / 42.0, 107.866, 287.8675, 57905, 32000),  // J3 elbow
-    joint(4.0, -105.46975, 105.46975, 0, 10000),                 // J4 wrist 1
-    joint(4.0, -90.0, 90.0, 0, 10000),                           // J5 wrist 2
-    joint(10.0, 0.0, 360.0, 32000, 27000),                       // J6 wrist 3
+    joint(6.4, -123.046875, 123.046875, 10240, 15000),             // J1 base, 96/15
+    joint(20.0, -145.0088, -3.375, -32000, 25000),                 // J2 shoulder
+    joint(20.0 * (38.0 / 42.0), 107.866, 287.8675, 57905, 32000),  // J3 elbow
+    joint(4.0, -105.46975, 105.46975, 0, 10000),                   // J4 wrist 1
+    joint(4.0, -90.0, 90.0, 0, 10000),                             // J5 wrist 2
+    joint(10.0, 0.0, 360.0, 32000, 27000),                         // J6 wrist 3
 }};
 
-/// `value` rounded to the nearest integer, saturated to int32 (NaN gives 0).
-std::int32_t rounded(double value) {
+/// The API's radian_per_step_constant: one microstep at the motor.
+constexpr double kRadianPerStep = 2.0 * std::numbers::pi / kMicrostepsPerMotorRevolution;
+
+double gear_ratio(int joint) { return kJointUnits[static_cast<std::size_t>(joint)].gear_ratio; }
+
+enum class Rounding : std::uint8_t {
+  kNearestTiesToEven,  // np.rint, the API's positions
+  kTowardZero,         // np.int32(x) / int(x), both hosts' speeds
+};
+
+/// `value` as an int32 the way `rounding` says, saturated (NaN gives 0) where the hosts' casts
+/// would be undefined.
+std::int32_t to_int32(double value, Rounding rounding) {
   constexpr double kLowest = std::numeric_limits<std::int32_t>::lowest();
   constexpr double kHighest = std::numeric_limits<std::int32_t>::max();
   if (std::isnan(value)) return 0;
   if (value <= kLowest) return std::numeric_limits<std::int32_t>::lowest();
   if (value >= kHighest) return std::numeric_limits<std::int32_t>::max();
-  return static_cast<std::int32_t>(std::lround(value));
+  // std::nearbyint rounds ties to even in the default rounding mode, which robotd never changes.
+  return static_cast<std::int32_t>(rounding == Rounding::kNearestTiesToEven ? std::nearbyint(value)
+                                                                            : std::trunc(value));
 }
 
 }  // namespace
 
 const std::array<JointUnits, kJoints>& joint_units() { return kJointUnits; }
 
-double steps_per_rad(int joint) {
-  return kMicrostepsPerMotorRevolution * kJointUnits[static_cast<std::size_t>(joint)].gear_ratio /
-         (2.0 * std::numbers::pi);
+double steps_per_rad(int joint) { return gear_ratio(joint) / kRadianPerStep; }
+
+// config.py steps_to_rad: (steps × radian_per_step) / ratio.
+double steps_to_rad(int joint, double steps) { return steps * kRadianPerStep / gear_ratio(joint); }
+
+// config.py rad_to_steps, the conversion of every API motion command: rad × (1 / radian_per_step),
+// × ratio, np.rint. (Its rad_to_steps_scalar divides instead and can land on the other side of a
+// half step; only the API's warm-up calls it.)
+std::int32_t rad_to_steps(int joint, double rad) {
+  return to_int32(rad * (1.0 / kRadianPerStep) * gear_ratio(joint), Rounding::kNearestTiesToEven);
 }
 
-double steps_to_rad(int joint, double steps) { return steps / steps_per_rad(joint); }
+// config.py speed_steps_to_rad: (steps/s × radian_per_step) / ratio.
+double steps_per_s_to_rad_per_s(int joint, double steps_per_s) {
+  return steps_per_s * kRadianPerStep / gear_ratio(joint);
+}
 
-std::int32_t rad_to_steps(int joint, double rad) { return rounded(rad * steps_per_rad(joint)); }
-
-double steps_per_s_to_rad_per_s(int joint, double steps_per_s) { return steps_per_s / steps_per_rad(joint); }
-
-std::int32_t rad_per_s_to_steps_per_s(int joint, double rad_per_s) { return rounded(rad_per_s * steps_per_rad(joint)); }
+// config.py speed_rad_to_steps and the commander's int(SPEED_RAD2STEP(...)): (rad/s / radian_per_step)
+// × ratio, truncated toward zero.
+std::int32_t rad_per_s_to_steps_per_s(int joint, double rad_per_s) {
+  return to_int32(rad_per_s / kRadianPerStep * gear_ratio(joint), Rounding::kTowardZero);
+}
 
 }  // namespace robotd::parol6

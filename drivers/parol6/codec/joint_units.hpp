@@ -23,11 +23,13 @@ struct JointUnits {
 
 const std::array<JointUnits, kJoints>& joint_units();
 
-double steps_per_rad(int joint);  // joint 0 … 5
+// The vendor API's arithmetic (joint_units.cpp says which function each one follows). Joints 0 … 5;
+// results outside int32 saturate, NaN gives 0.
+double steps_per_rad(int joint);
 double steps_to_rad(int joint, double steps);
-std::int32_t rad_to_steps(int joint, double rad);  // rounded to the nearest microstep
+std::int32_t rad_to_steps(int joint, double rad);  // nearest microstep, ties to even (the API)
 double steps_per_s_to_rad_per_s(int joint, double steps_per_s);
-std::int32_t rad_per_s_to_steps_per_s(int joint, double rad_per_s);
+std::int32_t rad_per_s_to_steps_per_s(int joint, double rad_per_s);  // truncated toward zero (both hosts)
 
 /// Firmware clamp on every stepper's speed.
 inline constexpr double kFirmwareMaxSpeedStepsPerSecond = 50000.0;

@@ -46,7 +46,9 @@ inline constexpr std::uint8_t kReleaseDirection = 0x10;
 
 enum class GripperMode : std::uint8_t { kOperate = 0, kCalibrate = 1, kClearError = 2 };
 
-/// Gripper status byte as the SSG-48 firmware packs it (spec §8.3, the hardware reading).
+/// Gripper status byte as the SSG-48 firmware packs it (Spectral-Micro-BLDC-controller,
+/// Gripper_pack_data: MSB first) and the control board forwards it unchanged as reply byte 51.
+/// The PAROL6 API reads the object code from 0x08/0x04 instead, where the errors are.
 namespace gripper_status {
 inline constexpr std::uint8_t kActivated = 0x80;
 inline constexpr std::uint8_t kMoving = 0x40;
@@ -64,7 +66,8 @@ enum class ObjectDetection : std::uint8_t {
   kOpeningOnObject = 2,
   kAtPosition = 3,
 };
-/// code = bit 0x20 | bit 0x10 << 1 (the gripper firmware's packing).
+/// code = bit 0x20 | bit 0x10 << 1 (the gripper firmware's packing; the reply's separate
+/// object-detection byte 52 is a constant 1 on the board firmware).
 ObjectDetection object_detection(std::uint8_t gripper_status_byte);
 
 /// I/O bitfield bits (reply body offset 37; host body offset 38 uses OUT1/OUT2 only).
@@ -86,7 +89,7 @@ struct HostFrame {
   std::uint8_t timeout_ms = 0;          // stored, never used by the firmware
   std::int16_t gripper_position = 0;    // 0 open … 255 closed
   std::int16_t gripper_speed = 0;       // 0 … 255
-  std::int16_t gripper_current_ma = 0;  // 100 … 1000
+  std::int16_t gripper_current_ma = 0;  // 0 … 1300 mA
   std::uint8_t gripper_command = 0;     // gripper_command bits
   std::uint8_t gripper_mode = 0;        // GripperMode, one frame only for 1 and 2
   std::uint8_t gripper_id = 0;          // CAN node id 0 … 15

@@ -1,9 +1,12 @@
 // Ops that command the board or its peripherals, and the ops that report what it says.
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <thread>
+#include <utility>
 
 #include "codec/joint_units.hpp"
+#include "driver/gripper_current.hpp"
 #include "driver/parol6_ops.hpp"
 
 namespace robotd::parol6 {
@@ -121,8 +124,8 @@ Result<nlohmann::json> Parol6Ops::gripper(const nlohmann::json& args) {
   reader.require("position", "0 (open) … 255 (closed)");
   const auto position = reader.integer("position", 0, 255);
   const auto speed = reader.integer_or("speed", driver_.params_.gripper_speed, 0, 255);
-  const double current =
-      reader.number_or("current_a", driver_.params_.gripper_current_a, NumberRange{.min = 0.1, .max = 1.0});
+  const double current = reader.number_or("current_a", driver_.params_.gripper_current_a,
+                                          NumberRange{.min = kGripperCurrentMinA, .max = kGripperCurrentMaxA});
   const bool activate = reader.boolean_or("activate", true);
   if (auto error = arguments.finish()) return *error;
   change_peripherals([&](Peripherals& p) {
@@ -131,7 +134,11 @@ Result<nlohmann::json> Parol6Ops::gripper(const nlohmann::json& args) {
     p.gripper_current_ma = static_cast<std::int16_t>(std::lround(current * 1000));
     p.gripper_command = static_cast<std::uint8_t>((activate ? gripper_command::kActivate : 0) | gripper_command::kMove);
   });
-  return nlohmann::json{{"position", *position}, {"speed", speed}, {"current_a", current}, {"activate", activate}};
+  nlohmann::json sent{{"position", *position}, {"speed", speed}, {"current_a", current}, {"activate", activate}};
+  if (std::string warning = gripper_current_warning(current, static_cast<int>(speed)); !warning.empty()) {
+    sent["warning"] = std::move(warning);
+  }
+  return sent;
 }
 
 Result<nlohmann::json> Parol6Ops::gripper_mode(std::string_view op, const nlohmann::json& args, GripperMode mode) {

@@ -14,12 +14,16 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 18> kOps{{
+constexpr std::array<OpSpec, 19> kOps{{
     {"home", R"({"wait": bool}: run the board's homing sequence (HOME); with wait, return when every joint is homed)",
      driver::kNeedsFreeMotors},
     {"jog",
      R"({"joint": 1..6, "velocity_rad_s": number, "duration_s": 0..10}: turn one joint at a speed for a )"
      R"(while (streamed as positions: it stops if robotd stops))",
+     driver::kNeedsFreeMotors},
+    {"cart_jog",
+     R"({"axis": "x"|"y"|"z"|"rx"|"ry"|"rz", "velocity": m/s or rad/s, "duration_s": 0.05..10, "frame": )"
+     R"("base"|"tool"}: Cartesian jog, the tool on a straight line or turning about its point (as positions))",
      driver::kNeedsFreeMotors},
     {"move_joints",
      R"({"joints_rad": [6], "duration_s", "speed_fraction", "acceleration_fraction", "profile": )"
@@ -39,8 +43,8 @@ constexpr std::array<OpSpec, 18> kOps{{
     {"disable", R"({}: DISABLE: motion commands are ignored, the steppers stay energised)", driver::kNeedsFreeMotors},
     {"clear_error", R"({}: CLEAR ERROR (resets the board's homing state))", driver::kNeedsFreeMotors},
     {"output", R"({"out1": bool, "out2": bool}: set the isolated outputs)"},
-    {"gripper", R"({"position": 0..255 (0 open), "speed": 0..255, "current_a": 0.1..1.0, "activate": bool}: )"
-                R"(move the SSG-48 gripper)"},
+    {"gripper", R"({"position": 0..255 (0 open), "speed": 0..255, "current_a": 0..1.3, "activate": bool}: )"
+                R"(move the SSG-48 gripper (a warning above 0.7 A and below 0.15 A))"},
     {"gripper_calibrate", R"({}: calibrate and activate the gripper)"},
     {"gripper_clear_error", R"({}: clear the gripper's error)"},
     {"io", R"({}: IN1, IN2, OUT1, OUT2 and the E-stop input)"},
@@ -100,6 +104,7 @@ Result<nlohmann::json> Parol6Ops::call(const std::string& op, const nlohmann::js
     if (op == "disable") return one_shot(op, args, OneShot::kDisable);
     if (op == "clear_error") return one_shot(op, args, OneShot::kClearError);
     if (op == "jog") return jog(args);
+    if (op == "cart_jog") return cart_jog(args);
     if (op == "move_joints") return move_joints(args);
     if (op == "move_pose") return move_pose(args);
     if (op == "move_cart") return move_cart(args);

@@ -1,6 +1,6 @@
 // The PAROL6's device_call ops (docs/drivers/parol6.md has the table commander function → op).
 // SI units and radians at robotd's surface; steps and the board's codes stay in the codec.
-// Moves (jog, move_joints, move_pose, move_cart) are planned here, off the RT thread, and run
+// Moves (jog, cart_jog, move_joints, move_pose, move_cart) are planned here, off the RT thread, and run
 // by the RT thread from the trajectory buffer; they are refused while a session owns joints or
 // an e-stop is engaged, and a session taking joints or an e-stop ends them. The ops that act on
 // the joints need free motors: robotd refuses them while a session holds one.
@@ -54,6 +54,7 @@ class Parol6Ops {
   Result<nlohmann::json> move_joints(const nlohmann::json& args);
   Result<nlohmann::json> move_pose(const nlohmann::json& args);
   Result<nlohmann::json> move_cart(const nlohmann::json& args);
+  Result<nlohmann::json> cart_jog(const nlohmann::json& args);  // ops_cart_jog.cpp
   Result<nlohmann::json> stop(const nlohmann::json& args);
   Result<nlohmann::json> fk(const nlohmann::json& args);
   /// Error unless the arm may be moved by an op now (`needs_homed`: the move uses positions).

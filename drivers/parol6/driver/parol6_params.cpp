@@ -3,6 +3,7 @@
 #include <sstream>
 #include <vector>
 
+#include "driver/gripper_current.hpp"
 #include "robotd/driver/json_reader.hpp"
 
 namespace robotd::parol6 {
@@ -59,8 +60,8 @@ Result<Parol6Params> parse_parol6_params(const nlohmann::json& params) {
   out.home_on_connect = reader.boolean_or("home_on_connect", out.home_on_connect);
   out.gripper_id = static_cast<int>(reader.integer_or("gripper_id", out.gripper_id, 0, 15));
   out.gripper_speed = static_cast<int>(reader.integer_or("gripper_speed", out.gripper_speed, 0, 255));
-  out.gripper_current_a =
-      reader.number_or("gripper_current_a", out.gripper_current_a, NumberRange{.min = 0.1, .max = 1.0});
+  out.gripper_current_a = reader.number_or("gripper_current_a", out.gripper_current_a,
+                                           NumberRange{.min = kGripperCurrentMinA, .max = kGripperCurrentMaxA});
   for (auto& [name, joint_reader] : reader.object_map("joints")) {
     bool found = false;
     for (int j = 0; j < kJoints; ++j) {

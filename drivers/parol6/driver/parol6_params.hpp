@@ -26,7 +26,7 @@ struct Parol6Params {
   bool home_on_connect = false;    // run the homing sequence when the link comes up
   int gripper_id = 0;              // the SSG-48's CAN node id, 0 … 15
   int gripper_speed = 100;         // default set points for the gripper op (0 … 255)
-  double gripper_current_a = 0.5;  // 0.1 … 1.0
+  double gripper_current_a = 0.5;  // 0 … 1.3 (gripper_current.hpp)
   std::array<driver::JointLimits, kJoints> limits{};
 };
 

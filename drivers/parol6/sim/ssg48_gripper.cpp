@@ -107,8 +107,6 @@ std::uint8_t Ssg48Gripper::status() const {
   if ((code & 2U) != 0) bits |= gripper_status::kObjectBit1;
   if (temperature_error_) bits |= gripper_status::kTemperatureError;
   if (timeout_error_) bits |= gripper_status::kTimeoutError;
-  if (temperature_error_) bits |= gripper_status::kTemperatureError;
-  if (timeout_error_) bits |= gripper_status::kTimeoutError;
   if (estop_error_) bits |= gripper_status::kEstopError;
   if (calibrated_) bits |= gripper_status::kCalibrated;
   return static_cast<std::uint8_t>(bits);

@@ -939,18 +939,31 @@ TEST(Parol6JointUnits, StepsRoundTripThroughRadians) {
     for (int i = 0; i < 2000; ++i) {
       const std::int32_t steps = std::uniform_int_distribution<std::int32_t>(-100000, 100000)(random);
       ASSERT_EQ(rad_to_steps(j, steps_to_rad(j, steps)), steps);
-      ASSERT_EQ(rad_per_s_to_steps_per_s(j, steps_per_s_to_rad_per_s(j, steps)), steps);
+      // Speeds truncate like both vendor hosts: a product a hair below the whole step loses it.
+      const std::int32_t speed = rad_per_s_to_steps_per_s(j, steps_per_s_to_rad_per_s(j, steps));
+      ASSERT_LE(std::abs(speed), std::abs(steps));
+      ASSERT_LE(std::abs(steps) - std::abs(speed), 1);
     }
   }
 }
 
-TEST(Parol6JointUnits, RadiansRoundToTheNearestStep) {
+TEST(Parol6JointUnits, PositionsRoundToTheNearestStepTiesToEvenAsTheApi) {
   const double step = 1.0 / steps_per_rad(5);
   EXPECT_EQ(rad_to_steps(5, 0.4 * step), 0);
   EXPECT_EQ(rad_to_steps(5, 0.6 * step), 1);
   EXPECT_EQ(rad_to_steps(5, -0.6 * step), -1);
   EXPECT_EQ(rad_to_steps(5, kPi), 32000);
-  EXPECT_EQ(rad_per_s_to_steps_per_s(0, 1.0), 6519);  // 6400 · 6.4 / 2π = 6518.9
+  // Exact half steps of J1 (the product is 2.5 and 6.5 exactly): np.rint gives the even step,
+  // where rounding half away from zero would give 3 and 7.
+  EXPECT_EQ(rad_to_steps(0, 0.0003834951969714103), 2);
+  EXPECT_EQ(rad_to_steps(0, -0.0003834951969714103), -2);
+  EXPECT_EQ(rad_to_steps(0, 0.0009970875121256668), 6);
+}
+
+TEST(Parol6JointUnits, SpeedsTruncateTowardZeroAsBothHosts) {
+  EXPECT_EQ(rad_per_s_to_steps_per_s(0, 1.0), 6518);  // 6400 · 6.4 / 2π = 6518.9
+  EXPECT_EQ(rad_per_s_to_steps_per_s(0, -1.0), -6518);
+  EXPECT_EQ(rad_per_s_to_steps_per_s(0, 0.1), 651);  // 651.9: the rounding robotd used to do gave 652
   EXPECT_NEAR(steps_per_s_to_rad_per_s(0, 15000), 15000 * 2 * kPi / 6400 / 6.4, 1e-12);
 }
 

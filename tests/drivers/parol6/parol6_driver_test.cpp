@@ -201,6 +201,53 @@ TEST_F(Parol6DriverTest, JogAndMovesRunAndStopAtTheirEnd) {
   }));
 }
 
+TEST_F(Parol6DriverTest, CartesianJogMovesTheToolAlongAnAxisOfEitherFrame) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kJoints);
+  JointVector start = standby_rad();
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), start, 1e-3); }));
+  start[1] -= 0.2;  // away from the standby pose's wrist alignment
+  start[2] += 0.2;
+  ASSERT_TRUE(driver_.call("move_joints", {{"joints_rad", start}, {"duration_s", 0.6}}));
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), start, 2e-4); }));
+  const auto tool_now = [&] {
+    const auto fk = driver_.call("fk", nullptr);
+    return fk ? fk.value()["tool"] : nlohmann::json{};
+  };
+  const nlohmann::json before = tool_now();
+
+  const auto up = driver_.call("cart_jog", {{"axis", "z"}, {"velocity", 0.02}, {"duration_s", 0.5}});
+  ASSERT_TRUE(up) << up.error().message;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop&) {
+    const auto tool = tool_now();
+    return !tool.empty() && std::fabs(tool["z_m"].get<double>() - (before["z_m"].get<double>() + 0.01)) < 5e-4 &&
+           std::fabs(tool["x_m"].get<double>() - before["x_m"].get<double>()) < 5e-4 &&
+           std::fabs(tool["y_m"].get<double>() - before["y_m"].get<double>()) < 5e-4;
+  })) << before.dump()
+      << " → " << tool_now().dump();
+
+  // About the tool's own z axis (the pose's first angle, roll) the tool point stays where it is.
+  const nlohmann::json raised = tool_now();
+  const auto turned =
+      driver_.call("cart_jog", {{"axis", "rz"}, {"velocity", -0.3}, {"duration_s", 0.5}, {"frame", "tool"}});
+  ASSERT_TRUE(turned) << turned.error().message;
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop&) {
+    const auto tool = tool_now();
+    return !tool.empty() &&
+           std::fabs(tool["roll_rad"].get<double>() - (raised["roll_rad"].get<double>() - 0.15)) < 2e-3 &&
+           std::fabs(tool["x_m"].get<double>() - raised["x_m"].get<double>()) < 0.001 &&
+           std::fabs(tool["z_m"].get<double>() - raised["z_m"].get<double>()) < 0.001;
+  })) << raised.dump()
+      << " → " << tool_now().dump();
+
+  const auto too_fast = driver_.call("cart_jog", {{"axis", "x"}, {"velocity", 0.1}});
+  ASSERT_FALSE(too_fast);
+  EXPECT_NE(too_fast.error().message.find("args.velocity"), std::string::npos) << too_fast.error().message;
+  const auto bad_axis = driver_.call("cart_jog", {{"axis", "w"}, {"velocity", 0.01}});
+  ASSERT_FALSE(bad_axis);
+  EXPECT_NE(bad_axis.error().message.find("args.axis"), std::string::npos) << bad_axis.error().message;
+}
+
 TEST_F(Parol6DriverTest, MovePoseReachesThePoseWithEitherProfile) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kJoints);
@@ -250,8 +297,8 @@ TEST_F(Parol6DriverTest, MovesAreRefusedWhileASessionDrives) {
 // stop, the I/O, the gripper (not one of robotd's joints) and the queries do not.
 TEST_F(Parol6DriverTest, TheOpsThatActOnTheJointsNeedFreeMotors) {
   EXPECT_EQ(testing::ops_needing_free_motors(driver_.describe()),
-            (std::vector<std::string>{"home", "jog", "move_joints", "move_pose", "move_cart", "enable", "disable",
-                                      "clear_error"}));
+            (std::vector<std::string>{"home", "jog", "cart_jog", "move_joints", "move_pose", "move_cart", "enable",
+                                      "disable", "clear_error"}));
 }
 
 // Under robotd's e-stop the board is disabled every frame and enabled at the reset, so a one-shot
@@ -305,6 +352,23 @@ TEST_F(Parol6DriverTest, GripperAndOutputsReachTheBoard) {
   const auto bad = driver_.call("gripper", {{"position", 300}});
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.error().message.find("args.position"), std::string::npos) << bad.error().message;
+}
+
+TEST_F(Parol6DriverTest, GripperCurrentTakesTheCommandersRangeWithItsCautions) {
+  ASSERT_TRUE(driver_.connect());
+  const auto normal = driver_.call("gripper", {{"position", 10}, {"current_a", 0.5}});
+  ASSERT_TRUE(normal);
+  EXPECT_FALSE(normal.value().contains("warning")) << normal.value().dump();
+  const auto strong = driver_.call("gripper", {{"position", 10}, {"speed", 200}, {"current_a", 1.3}});
+  ASSERT_TRUE(strong) << "1300 mA is the top of the gripper's range, not an error";
+  EXPECT_NE(strong.value()["warning"].get<std::string>().find("above 700 mA"), std::string::npos)
+      << strong.value().dump();
+  const auto weak = driver_.call("gripper", {{"position", 10}, {"current_a", 0.0}});
+  ASSERT_TRUE(weak);
+  EXPECT_NE(weak.value()["warning"].get<std::string>().find("below 150 mA"), std::string::npos) << weak.value().dump();
+  const auto too_much = driver_.call("gripper", {{"position", 10}, {"current_a", 1.4}});
+  ASSERT_FALSE(too_much);
+  EXPECT_NE(too_much.error().message.find("args.current_a"), std::string::npos) << too_much.error().message;
 }
 
 TEST_F(Parol6DriverTest, ALostByteCostsOneFrameNotTheLink) {

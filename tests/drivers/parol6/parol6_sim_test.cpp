@@ -512,6 +512,18 @@ TEST_F(Parol6SimTest, GripperErrorsLatchUntilAClearError) {
   EXPECT_EQ(host_->exchange(idle())->gripper_status & gripper_status::kTemperatureError, 0);
 }
 
+TEST_F(Parol6SimTest, GripperErrorsLeaveTheObjectBitsAsTheGripperFirmwarePacksThem) {
+  // The SSG-48 firmware (Spectral-Micro-BLDC-controller, Gripper_pack_data) packs MSB first:
+  // activated, action, object code bit 0, bit 1, temperature error, timeout error, E-stop,
+  // calibrated. The PAROL6 API reads the object code from 0x08/0x04, where the errors are.
+  ASSERT_NO_FATAL_FAILURE(calibrate(*host_));
+  control({{"op", "gripper_error"}, {"temperature", true}, {"timeout", true}});
+  const auto errored = until_gripper_status(*host_, idle(), kCalibratedAtPosition | 0x0C);
+  ASSERT_TRUE(errored);
+  EXPECT_EQ(errored->gripper_status, 0xBD) << "0x80 activated, 0x30 code 3, 0x08 temperature, 0x04 timeout, 0x01";
+  EXPECT_EQ(object_detection(errored->gripper_status), ObjectDetection::kAtPosition);
+}
+
 // --- misbehaviour -------------------------------------------------------------------------------
 
 TEST_F(Parol6SimTest, SilenceReadsFramesWithoutAnswering) {
