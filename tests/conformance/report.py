@@ -26,7 +26,7 @@ def run(vendor, program):
 
 def main(args):
     columns = ("vectors", "passed", "deliberate_differences", "not_implemented", "failed")
-    print(f"{'vendor':<12}" + "".join(f"{c.replace("_", " "):>24}" for c in columns))
+    print(f"{'vendor':<12}" + "".join(f"{c.replace('_', ' '):>24}" for c in columns))
     ok = True
     for arg in args:
         vendor, _, program = arg.partition("=")

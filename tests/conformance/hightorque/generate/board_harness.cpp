@@ -24,8 +24,8 @@
 
 // The table's conversions (pid_scale, tqe_int2float, …) are private inline members of motor.
 #define private public
-#include "hardware/motor.cc"
 #include "hardware/canport.cc"
+#include "hardware/motor.cc"
 #include "lively_serial.cc"
 #undef private
 
@@ -162,8 +162,8 @@ struct Port {
 std::string motors_json(const std::vector<MotorSpec>& specs) {
   std::string text = "[";
   for (std::size_t i = 0; i < specs.size(); ++i) {
-    text += (i ? "," : "") + std::string("{\"id\":") + std::to_string(specs[i].id) + ",\"model\":\"" +
-            specs[i].model + "\"}";
+    text += (i ? "," : "") + std::string("{\"id\":") + std::to_string(specs[i].id) + ",\"model\":\"" + specs[i].model +
+            "\"}";
   }
   return text + "]";
 }
@@ -207,9 +207,9 @@ Command random_command(int motor) {
 std::string command_json(const Command& c) {
   return "{\"motor\":" + std::to_string(c.motor) + ",\"position\":" + number(c.position) +
          ",\"velocity\":" + number(c.velocity) + ",\"torque\":" + number(c.torque) + ",\"kp\":" + number(c.kp) +
-         ",\"kd\":" + number(c.kd) + ",\"acceleration\":" + number(c.acceleration) + ",\"voltage\":" +
-         number(c.voltage) + ",\"current\":" + number(c.current) + ",\"timeout_ms\":" + std::to_string(c.timeout_ms) +
-         "}";
+         ",\"kd\":" + number(c.kd) + ",\"acceleration\":" + number(c.acceleration) +
+         ",\"voltage\":" + number(c.voltage) + ",\"current\":" + number(c.current) +
+         ",\"timeout_ms\":" + std::to_string(c.timeout_ms) + "}";
 }
 
 using ModeCall = std::function<void(motor&, const Command&)>;
@@ -286,9 +286,15 @@ void model_scaling(const std::string& model) {
   const double k = m.tqe_int2float(10000, m.get_motor_enum_type()) - m.tqe_int2float(0, m.get_motor_enum_type());
   const float torque_span = static_cast<float>(32767 * k / 10000.0);
   std::vector<Command> grid;
-  const float fixed[][5] = {{0, 0, 0, 0, 0},          {0.35F, 0.7F, 0.35F, 10, 0.7F},  {-0.35F, -0.7F, -0.35F, 40, 1},
-                            {1, 1, 1, 100, 2.8F},     {3.1415927F, 10, 5, 300, 20},    {-3.1415927F, -10, -5, 0.1F, 0.1F},
-                            {20.58F, 51.4F, 0, 1000, 50}, {-20.58F, -51.4F, 0, 60, 0.3F}, {21, 52, 0, 5, 5},
+  const float fixed[][5] = {{0, 0, 0, 0, 0},
+                            {0.35F, 0.7F, 0.35F, 10, 0.7F},
+                            {-0.35F, -0.7F, -0.35F, 40, 1},
+                            {1, 1, 1, 100, 2.8F},
+                            {3.1415927F, 10, 5, 300, 20},
+                            {-3.1415927F, -10, -5, 0.1F, 0.1F},
+                            {20.58F, 51.4F, 0, 1000, 50},
+                            {-20.58F, -51.4F, 0, 60, 0.3F},
+                            {21, 52, 0, 5, 5},
                             {-21, -52, 0, 5, 5}};
   for (const auto& f : fixed) grid.push_back(Command{1, f[0], f[1], f[2], f[3], f[4], 0, 0, 0, 0});
   for (const float t : {torque_span * 0.99F, -torque_span * 0.99F, torque_span * 1.02F, -torque_span * 1.02F}) {
@@ -333,19 +339,25 @@ void reply_vector(const std::vector<MotorSpec>& specs, std::uint8_t command, con
     motor* m = port.motors[i];
     const motor_back_t* s = m->get_current_motor_state();
     const cdc_rx_motor_version_s& v = m->get_version();
-    std::printf("%s{\"id\":%d,\"mode\":%d,\"fault\":%d,\"position\":%s,\"velocity\":%s,\"torque\":%s,"
-                "\"version\":[%d,%d,%d]}",
-                i ? "," : "", m->get_motor_id(), s->mode, s->fault, number(s->position).c_str(),
-                number(s->velocity).c_str(), number(s->torque).c_str(), v.major, v.minor, v.patch);
+    std::printf(
+        "%s{\"id\":%d,\"mode\":%d,\"fault\":%d,\"position\":%s,\"velocity\":%s,\"torque\":%s,"
+        "\"version\":[%d,%d,%d]}",
+        i ? "," : "", m->get_motor_id(), s->mode, s->fault, number(s->position).c_str(), number(s->velocity).c_str(),
+        number(s->torque).c_str(), v.major, v.minor, v.patch);
   }
   std::printf("]}\n");
 }
 
 void board_replies() {
   const std::vector<MotorSpec> three{{1, "6056_36"}, {2, "5047_36"}, {3, "4438_32"}};
-  const std::int16_t raws[][3] = {{0, 0, 0},          {1, -1, 2},           {10000, 4000, 100},
-                                  {-10000, -4000, -100}, {32767, 32767, 32767}, {-32767, -32767, -32767},
-                                  {-32768, -32768, -32768}, {1234, -5678, 910}};
+  const std::int16_t raws[][3] = {{0, 0, 0},
+                                  {1, -1, 2},
+                                  {10000, 4000, 100},
+                                  {-10000, -4000, -100},
+                                  {32767, 32767, 32767},
+                                  {-32767, -32767, -32767},
+                                  {-32768, -32768, -32768},
+                                  {1234, -5678, 910}};
   for (const auto& raw : raws) {
     for (const std::uint8_t command : {std::uint8_t{MODE_MOTOR_STATE}, std::uint8_t{MODE_MOTOR_STATE2}}) {
       std::vector<std::uint8_t> payload;
@@ -364,8 +376,8 @@ void board_replies() {
   }
   // Every model decodes the same raw torques through its own table.
   for (const std::string& model : model_names()) {
-    for (const std::int16_t raw : {std::int16_t{0}, std::int16_t{1000}, std::int16_t{-1000}, std::int16_t{32767},
-                                   std::int16_t{-32768}}) {
+    for (const std::int16_t raw :
+         {std::int16_t{0}, std::int16_t{1000}, std::int16_t{-1000}, std::int16_t{32767}, std::int16_t{-32768}}) {
       std::vector<std::uint8_t> payload{1, 0x21, 0};
       put16(payload, raw);
       put16(payload, raw);
@@ -394,9 +406,10 @@ void motor_table() {
     const double d = m.tqe_int2float(0, type);
     const double k = (m.tqe_int2float(10000, type) - d) / 10000.0;
     const double k_pid = 1.0 / m.pid_scale(1.0F, type);
-    std::printf("{\"group\":\"board models\",\"model\":\"%s\",\"torque_per_unit\":%s,\"torque_offset_nm\":%s,"
-                "\"gain_factor\":%s}\n",
-                model.c_str(), number(k).c_str(), number(d).c_str(), number(k_pid).c_str());
+    std::printf(
+        "{\"group\":\"board models\",\"model\":\"%s\",\"torque_per_unit\":%s,\"torque_offset_nm\":%s,"
+        "\"gain_factor\":%s}\n",
+        model.c_str(), number(k).c_str(), number(d).c_str(), number(k_pid).c_str());
   }
 }
 
@@ -414,7 +427,8 @@ struct EmulatedBoard {
     const std::uint8_t command = bytes[1];
     std::vector<std::uint8_t> reply;
     if (command == MODE_RESET_ZERO || command == MODE_CONF_WRITE || command == MODE_CONF_LOAD) {
-      const std::vector<int>& ids = attempts++ == 0 ? first_answer : std::vector<int>(answering.begin(), answering.end());
+      const std::vector<int>& ids =
+          attempts++ == 0 ? first_answer : std::vector<int>(answering.begin(), answering.end());
       std::vector<std::uint8_t> payload(ids.begin(), ids.end());
       reply = board_packet(command, payload);
     } else if (command == MODE_SET_NUM) {
@@ -429,7 +443,8 @@ struct EmulatedBoard {
   }
 };
 
-void acknowledged(const std::string& call, const std::function<int(canport&)>& run, const std::vector<int>& first_answer) {
+void acknowledged(const std::string& call, const std::function<int(canport&)>& run,
+                  const std::vector<int>& first_answer) {
   const std::vector<MotorSpec> specs{{1, "6056_36"}, {2, "5047_36"}, {3, "4438_32"}};
   Port port(specs);
   EmulatedBoard board;

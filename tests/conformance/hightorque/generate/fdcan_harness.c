@@ -21,7 +21,7 @@ FDCAN_HandleTypeDef hfdcan2 = {2};
 
 typedef struct {
   uint32_t id;
-  uint8_t length; /* the CAN-FD length the HAL sends (size rounded up) */
+  uint8_t length;     /* the CAN-FD length the HAL sends (size rounded up) */
   uint8_t data_bytes; /* how many bytes the caller handed over */
   uint8_t data[64];
 } captured_frame;
@@ -41,9 +41,9 @@ static uint8_t fd_length(uint16_t size) {
 /* The current SDK's fdcan_send sets bit 15 (command frame) itself: hightorque_fdcan.h @1ffbf90d
  * and motor_many.c @1910d4d3 say so and pass the id without it. The HAL sends the size rounded
  * up to a CAN-FD length; what follows the caller's buffer is recorded as 0. */
-void fdcan_send(FDCAN_HandleTypeDef *fdcanHandle, uint32_t id, uint8_t *data, uint16_t size) {
+void fdcan_send(FDCAN_HandleTypeDef* fdcanHandle, uint32_t id, uint8_t* data, uint16_t size) {
   (void)fdcanHandle;
-  captured_frame *frame = &captured[captured_count++];
+  captured_frame* frame = &captured[captured_count++];
   memset(frame, 0, sizeof *frame);
   frame->id = id | 0x8000u;
   frame->length = fd_length(size);
@@ -69,8 +69,8 @@ static struct {
   uint8_t data[64];
 } rx;
 
-int HAL_FDCAN_GetRxMessage(FDCAN_HandleTypeDef *fdcanHandle, uint32_t fifo, FDCAN_RxHeaderTypeDef *header,
-                           uint8_t *data) {
+int HAL_FDCAN_GetRxMessage(FDCAN_HandleTypeDef* fdcanHandle, uint32_t fifo, FDCAN_RxHeaderTypeDef* header,
+                           uint8_t* data) {
   (void)fifo;
   if (!rx.pending || fdcanHandle != &hfdcan1) return 1;
   rx.pending = 0;
@@ -94,7 +94,7 @@ static void print_frames(void) {
 }
 
 /* %.9g round-trips a float exactly. */
-static void print_float(const char *name, float value) { printf("\"%s\":%.9g", name, (double)value); }
+static void print_float(const char* name, float value) { printf("\"%s\":%.9g", name, (double)value); }
 
 /* ---- values ------------------------------------------------------------------------------ */
 
@@ -112,7 +112,7 @@ typedef struct {
   float values[MAX_VALUES];
 } grid;
 
-static grid make_grid(const float *fixed, int fixed_count, float low, float high) {
+static grid make_grid(const float* fixed, int fixed_count, float low, float high) {
   grid g;
   g.count = 0;
   for (int i = 0; i < fixed_count; ++i) g.values[g.count++] = fixed[i];
@@ -123,8 +123,9 @@ static grid make_grid(const float *fixed, int fixed_count, float low, float high
 static grid positions, velocities, torques, gains, accelerations, electricals;
 
 static void make_grids(void) {
-  static const float pos[] = {0, 1e-4f, -1e-4f, 0.1f, -0.1f, 0.35f, -0.35f, 0.7f, 1, -1, 1.5707964f, 3.1415927f,
-                              -3.1415927f, 6.2831855f, -6.2831855f, 10, -10, 20.58f, -20.58f, 20.6f, -20.6f, 25, -25};
+  static const float pos[] = {0,   1e-4f,  -1e-4f,     0.1f,       -0.1f,       0.35f,      -0.35f,      0.7f,
+                              1,   -1,     1.5707964f, 3.1415927f, -3.1415927f, 6.2831855f, -6.2831855f, 10,
+                              -10, 20.58f, -20.58f,    20.6f,      -20.6f,      25,         -25};
   static const float vel[] = {0, 0.35f, 0.7f, -0.7f, 1, -1, 10, -10, 51.4f, -51.4f, 52, -52};
   static const float tqe[] = {0, 0.01f, 0.35f, -0.35f, 0.7f, 1, -1, 3.3f, 100, -100, 327.67f, 328, -328};
   static const float gain[] = {0, 0.1f, 0.35f, 0.7f, 1, 5, 10, 40, 100, 521, 522, 600, -1};
@@ -138,17 +139,17 @@ static void make_grids(void) {
   electricals = make_grid(electrical, sizeof electrical / sizeof *electrical, -3300, 3300);
 }
 
-static float pick(const grid *g, int i) { return g->values[i % g->count]; }
+static float pick(const grid* g, int i) { return g->values[i % g->count]; }
 
 /* ---- single-motor frames: convert.c's conversion, then the builder, as motor_many.c does ---- */
 
 typedef enum { W_INT16, W_INT32, W_FLOAT } width_t;
-static const char *width_names[] = {"int16", "int32", "float"};
+static const char* width_names[] = {"int16", "int32", "float"};
 static const data_type_t width_types[] = {TINT16, TINT32, TFLOAT};
 
-static void begin(const char *group, const char *call, width_t width, int motor) {
-  printf("{\"group\":\"%s\",\"call\":\"%s\",\"width\":\"%s\",\"motor\":%d,\"args\":{", group, call,
-         width_names[width], motor);
+static void begin(const char* group, const char* call, width_t width, int motor) {
+  printf("{\"group\":\"%s\",\"call\":\"%s\",\"width\":\"%s\",\"motor\":%d,\"args\":{", group, call, width_names[width],
+         motor);
 }
 
 static void end(void) {
@@ -168,14 +169,15 @@ static void single_mit(width_t w, int motor, float p, float v, float t, float kp
   print_float("position", p), printf(","), print_float("velocity", v), printf(","), print_float("torque", t);
   printf(","), print_float("kp", kp), printf(","), print_float("kd", kd);
   const float rp = pos_float2int(TURNS_OF(p), type), rv = vel_float2int(TURNS_OF(v), type);
-  const float rt = tqe_float2int(t, type), rkp = pid_float2int(GAIN_OF(kp), type), rkd = pid_float2int(GAIN_OF(kd), type);
+  const float rt = tqe_float2int(t, type), rkp = pid_float2int(GAIN_OF(kp), type),
+              rkd = pid_float2int(GAIN_OF(kd), type);
   if (w == W_INT16) hightorque_pos_vel_tqe_kp_kd_int16(&hfdcan1, motor, rp, rv, rt, rkp, rkd);
   if (w == W_INT32) hightorque_pos_vel_tqe_kp_kd_int32(&hfdcan1, motor, rp, rv, rt, rkp, rkd);
   if (w == W_FLOAT) hightorque_pos_vel_tqe_kp_kd_float(&hfdcan1, motor, rp, rv, rt, rkp, rkd);
   end();
 }
 
-static void single_one(width_t w, int motor, const char *call, float x) {
+static void single_one(width_t w, int motor, const char* call, float x) {
   const data_type_t type = width_types[w];
   begin("single frames", call, w, motor);
   if (strcmp(call, "position") == 0) {
@@ -212,7 +214,7 @@ static void single_one(width_t w, int motor, const char *call, float x) {
   end();
 }
 
-static void single_three(width_t w, int motor, const char *call, float a, float b, float c) {
+static void single_three(width_t w, int motor, const char* call, float a, float b, float c) {
   const data_type_t type = width_types[w];
   begin("single frames", call, w, motor);
   if (strcmp(call, "pos_vel_tqe") == 0) {
@@ -239,7 +241,7 @@ static void single_three(width_t w, int motor, const char *call, float a, float 
   end();
 }
 
-static void single_bare(width_t w, int motor, const char *call) {
+static void single_bare(width_t w, int motor, const char* call) {
   begin("single frames", call, w, motor);
   if (strcmp(call, "stop") == 0) {
     if (w == W_INT16) hightorque_stop_int16(&hfdcan1, motor);
@@ -282,7 +284,7 @@ static void single_frames(void) {
 
 /* ---- system commands --------------------------------------------------------------------- */
 
-static void system_frame(const char *call, int motor, long argument) {
+static void system_frame(const char* call, int motor, long argument) {
   printf("{\"group\":\"system commands\",\"call\":\"%s\",\"motor\":%d,\"args\":{", call, motor);
   if (strcmp(call, "change_id") == 0) {
     printf("\"new_id\":%ld", argument);
@@ -311,15 +313,17 @@ static void system_frame(const char *call, int motor, long argument) {
 
 static void system_commands(void) {
   static const int motors[] = {1, 5, 30};
-  static const char *plain[] = {"set_zero", "save_to_flash", "soft_reboot", "firmware_version", "hardware_version",
-                                "model"};
+  static const char* plain[] = {"set_zero",         "save_to_flash",    "soft_reboot",
+                                "firmware_version", "hardware_version", "model"};
   for (unsigned m = 0; m < sizeof motors / sizeof *motors; ++m) {
     for (unsigned c = 0; c < sizeof plain / sizeof *plain; ++c) system_frame(plain[c], motors[m], 0);
   }
   static const long periods[] = {0, 100, 1000, 123456, 4000000000L};
   for (unsigned i = 0; i < sizeof periods / sizeof *periods; ++i) system_frame("status_push", 2, periods[i]);
-  static const int changes[][2] = {{1, 2}, {3, 30}, {30, 1}, {1, 0}, {1, 31}, {1, 127}, {1, 200}, {0, 5}, {31, 5}, {127, 3}};
-  for (unsigned i = 0; i < sizeof changes / sizeof *changes; ++i) system_frame("change_id", changes[i][0], changes[i][1]);
+  static const int changes[][2] = {{1, 2},   {3, 30},  {30, 1}, {1, 0},  {1, 31},
+                                   {1, 127}, {1, 200}, {0, 5},  {31, 5}, {127, 3}};
+  for (unsigned i = 0; i < sizeof changes / sizeof *changes; ++i)
+    system_frame("change_id", changes[i][0], changes[i][1]);
 }
 
 /* ---- one-to-many block frames (motor_many.c) --------------------------------------------- */
@@ -329,7 +333,7 @@ typedef struct {
   float a, b, c, d, e;
 } slot_args;
 
-static void block_vector(const char *call, const slot_args *slots, int count, motor_query_t query) {
+static void block_vector(const char* call, const slot_args* slots, int count, motor_query_t query) {
   /* Every vector starts from a fresh buffer: a mode change sets every slot to "no value". */
   if (strcmp(call, "stop") == 0) {
     motor_many_brake(PORT1, 1, 0);
@@ -339,7 +343,7 @@ static void block_vector(const char *call, const slot_args *slots, int count, mo
   printf("{\"group\":\"block frames\",\"call\":\"%s\",\"motors\":%d,\"query\":%d,\"slots\":[", call, MANY_MOTOR_SIZE,
          (int)query);
   for (int i = 0; i < count; ++i) {
-    const slot_args *s = &slots[i];
+    const slot_args* s = &slots[i];
     printf("%s{\"motor\":%d,", i ? "," : "", s->motor);
     if (strcmp(call, "mit") == 0) {
       print_float("position", s->a), printf(","), print_float("velocity", s->b), printf(",");
@@ -393,14 +397,18 @@ static void block_vector(const char *call, const slot_args *slots, int count, mo
 }
 
 static slot_args slot_for(int motor, int i) {
-  slot_args s = {motor, pick(&positions, i), pick(&velocities, i + 3), pick(&torques, i + 5), pick(&gains, i + 1),
+  slot_args s = {motor,
+                 pick(&positions, i),
+                 pick(&velocities, i + 3),
+                 pick(&torques, i + 5),
+                 pick(&gains, i + 1),
                  pick(&gains, i + 4)};
   return s;
 }
 
 static void block_frames(void) {
-  static const char *calls[] = {"mit", "position", "velocity", "torque", "voltage", "current", "vel_acc",
-                                "pos_vel_tqe", "pos_vel_acc", "stop", "brake", "soft_reboot", "set_zero"};
+  static const char* calls[] = {"mit",         "position",    "velocity", "torque", "voltage",     "current", "vel_acc",
+                                "pos_vel_tqe", "pos_vel_acc", "stop",     "brake",  "soft_reboot", "set_zero"};
   static const motor_query_t queries[] = {QUERY_MODE_FLAUT_TEMP_POS_VEL_TQE, QUERY_MODE_FLAUT_POS_VEL_TQE,
                                           QUERY_FLAUT_POS_VEL_TQE};
   slot_args slots[MANY_MOTOR_SIZE];
@@ -426,7 +434,7 @@ static void block_frames(void) {
 
 /* ---- replies: crafted frames through motor_process_state_all() --------------------------- */
 
-static void reply_vector(uint32_t id, const uint8_t *data, uint8_t length) {
+static void reply_vector(uint32_t id, const uint8_t* data, uint8_t length) {
   const uint8_t motor = (id >> 8) & 0x7F;
   /* Sentinels show which fields the parser wrote. */
   const int known = motor >= 1 && motor <= MOTOR_MAX_NUM;
@@ -457,17 +465,23 @@ static void reply_vector(uint32_t id, const uint8_t *data, uint8_t length) {
   printf("}}\n");
 }
 
-static void put16(uint8_t *p, int16_t v) { memcpy(p, &v, 2); }
-static void put32(uint8_t *p, int32_t v) { memcpy(p, &v, 4); }
-static void putf(uint8_t *p, float v) { memcpy(p, &v, 4); }
+static void put16(uint8_t* p, int16_t v) { memcpy(p, &v, 2); }
+static void put32(uint8_t* p, int32_t v) { memcpy(p, &v, 4); }
+static void putf(uint8_t* p, float v) { memcpy(p, &v, 4); }
 
 static void state_replies(uint8_t code, int motor) {
-  static const int16_t raws16[][4] = {{0, 0, 0, 0},       {1, -1, 2, 250},        {10000, 4000, 100, 355},
-                                      {-10000, -4000, -100, -5}, {32767, 32767, 32767, 1000}, {-32767, -32767, -32767, 0},
+  static const int16_t raws16[][4] = {{0, 0, 0, 0},
+                                      {1, -1, 2, 250},
+                                      {10000, 4000, 100, 355},
+                                      {-10000, -4000, -100, -5},
+                                      {32767, 32767, 32767, 1000},
+                                      {-32767, -32767, -32767, 0},
                                       {(int16_t)0x8000, (int16_t)0x8000, (int16_t)0x8000, (int16_t)0x8000},
                                       {1234, -5678, 910, 421}};
-  static const int32_t raws32[][4] = {{0, 0, 0, 0},          {100000, 100000, 1000, 35500},
-                                      {-123456, 654321, -2500, 42000}, {(int32_t)0x80000000, (int32_t)0x80000000, (int32_t)0x80000000, 0},
+  static const int32_t raws32[][4] = {{0, 0, 0, 0},
+                                      {100000, 100000, 1000, 35500},
+                                      {-123456, 654321, -2500, 42000},
+                                      {(int32_t)0x80000000, (int32_t)0x80000000, (int32_t)0x80000000, 0},
                                       {2147483647, -2147483647, 7, 1}};
   static const float rawsf[][4] = {{0, 0, 0, 0}, {0.5f, -1.25f, 3.5f, 35.5f}, {-2.75f, 10, -0.01f, 60}};
   const uint8_t temp_bytes = code == 0x0C ? 1 : 0;
@@ -478,7 +492,7 @@ static void state_replies(uint8_t code, int motor) {
     data[0] = code;
     data[1] = code == 0x0E ? 0x07 : 0x21;
     if (code != 0x0E) data[2] = (uint8_t)(i * 3);
-    uint8_t *at = data + header;
+    uint8_t* at = data + header;
     if (temp_bytes) put16(at, raws16[i][3]), at += 2;
     put16(at, raws16[i][0]), put16(at + 2, raws16[i][1]), put16(at + 4, raws16[i][2]);
     reply_vector((1u << 16) | ((uint32_t)motor << 8), data, (uint8_t)fd_length((uint16_t)(at + 6 - data)));
@@ -488,7 +502,7 @@ static void state_replies(uint8_t code, int motor) {
     data[0] = code;
     data[1] = code == 0x0E ? 0x14 : 0x1D;
     if (code != 0x0E) data[2] = 0;
-    uint8_t *at = data + header;
+    uint8_t* at = data + header;
     if (temp_bytes) put32(at, raws32[i][3]), at += 4;
     put32(at, raws32[i][0]), put32(at + 4, raws32[i][1]), put32(at + 8, raws32[i][2]);
     reply_vector((2u << 16) | ((uint32_t)motor << 8), data, (uint8_t)fd_length((uint16_t)(at + 12 - data)));
@@ -497,7 +511,7 @@ static void state_replies(uint8_t code, int motor) {
     memset(data, 0, sizeof data);
     data[0] = code;
     data[1] = code == 0x0E ? 0 : 0x01;
-    uint8_t *at = data + header;
+    uint8_t* at = data + header;
     if (temp_bytes) putf(at, rawsf[i][3]), at += 4;
     putf(at, rawsf[i][0]), putf(at + 4, rawsf[i][1]), putf(at + 8, rawsf[i][2]);
     reply_vector((3u << 16) | ((uint32_t)motor << 8), data, (uint8_t)fd_length((uint16_t)(at + 12 - data)));
@@ -517,7 +531,8 @@ static void replies(void) {
   reply_vector((1u << 16) | (3u << 8), hardware, sizeof hardware);
   const uint8_t model[] = {0x07, 0x07, '5', '0', '4', '7', '_', '3', '6', 0};
   reply_vector((1u << 16) | (4u << 8), model, 12);
-  const uint8_t long_model[] = {0x07, 0x10, 'P', 'I', '_', 'P', 'L', 'U', 'S', '_', '6', '0', '5', '6', '_', '3', '6', 'X'};
+  const uint8_t long_model[] = {0x07, 0x10, 'P', 'I', '_', 'P', 'L', 'U', 'S',
+                                '_',  '6',  '0', '5', '6', '_', '3', '6', 'X'};
   reply_vector((1u << 16) | (4u << 8), long_model, 20);
   const uint8_t ok[] = {0x03, 0x00};
   reply_vector((1u << 16) | (5u << 8), ok, sizeof ok);
@@ -530,8 +545,8 @@ static void replies(void) {
   reply_vector((1u << 16) | 0x8000u | (7u << 8), command, 12);
 }
 
-int main(int argc, char **argv) {
-  const char *part = argc > 1 ? argv[1] : "all";
+int main(int argc, char** argv) {
+  const char* part = argc > 1 ? argv[1] : "all";
   make_grids();
   if (strcmp(part, "all") == 0 || strcmp(part, "single") == 0) {
     single_frames();

@@ -9,8 +9,9 @@
 #ifndef _CONVERT_H
 #define _CONVERT_H
 
-#include "main.h"
 #include <math.h>
+
+#include "main.h"
 
 #ifndef MOTOR_DATA_TYPE_FLAG
 #define MOTOR_DATA_TYPE_FLAG RADIAN_2PI
@@ -48,6 +49,6 @@ float tqe_int2float(const float in_data, const data_type_t type);
 float acc_int2float(const float in_data, const data_type_t type);
 float pid_int2float(const float in_data, const data_type_t type);
 float temp_int2float(const float in_data, const data_type_t type);
-void my_memcpy(void *p1, const void *p2, const int16_t len);
+void my_memcpy(void* p1, const void* p2, const int16_t len);
 
 #endif

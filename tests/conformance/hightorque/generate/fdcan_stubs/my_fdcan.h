@@ -14,9 +14,9 @@ typedef struct {
 #define HAL_OK 0
 #define FDCAN_RX_FIFO0 0
 
-void fdcan_send(FDCAN_HandleTypeDef *fdcanHandle, uint32_t id, uint8_t *data, uint16_t size);
+void fdcan_send(FDCAN_HandleTypeDef* fdcanHandle, uint32_t id, uint8_t* data, uint16_t size);
 uint16_t get_fdcan_data_size(uint32_t dlc);
-int HAL_FDCAN_GetRxMessage(FDCAN_HandleTypeDef *fdcanHandle, uint32_t fifo, FDCAN_RxHeaderTypeDef *header,
-                           uint8_t *data);
+int HAL_FDCAN_GetRxMessage(FDCAN_HandleTypeDef* fdcanHandle, uint32_t fifo, FDCAN_RxHeaderTypeDef* header,
+                           uint8_t* data);
 
 #endif
