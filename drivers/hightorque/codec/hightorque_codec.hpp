@@ -342,6 +342,11 @@ std::size_t decode_board_states(BoardCommand command, std::span<const std::uint8
 std::size_t encode_board_states(BoardCommand command, std::span<const BoardMotorState> states,
                                 std::span<const MotorScaling> scaling_by_motor_id,
                                 std::span<std::uint8_t> out) noexcept;
+/// The board's answer to kResetZero, kSave and kReloadConfig: the ids of the motors that did it,
+/// one byte each. Writes a successful CommandResult per id (id 0 skipped) into `out` and returns
+/// how many; 0 for any other command.
+std::size_t decode_board_acknowledgements(BoardCommand command, std::span<const std::uint8_t> payload,
+                                          std::span<CommandResult> out) noexcept;
 /// A kVersion answer: one [id, major, minor, patch] record per motor. Decodes into `out` and
 /// returns how many; stops at a truncated record or when `out` is full; skips motor 0.
 inline constexpr std::size_t kBoardVersionRecordSize = 4;

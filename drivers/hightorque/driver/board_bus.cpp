@@ -110,6 +110,11 @@ class BoardBus final : public MotorBus {
       deliver_versions(frame, sink);
       return;
     }
+    if (frame.command == BoardCommand::kResetZero || frame.command == BoardCommand::kSave ||
+        frame.command == BoardCommand::kReloadConfig) {
+      deliver_acknowledgements(frame, sink);
+      return;
+    }
     std::array<BoardMotorState, driver::kMaxJoints> states;
     const std::size_t count = decode_board_states(frame.command, frame.bytes(), scaling_, states);
     for (std::size_t i = 0; i < count; ++i) {
@@ -122,6 +127,18 @@ class BoardBus final : public MotorBus {
       reply.state.position_rad = states[i].position_rad;
       reply.state.velocity_rad_s = states[i].velocity_rad_s;
       reply.state.torque_nm = states[i].torque_nm;
+      sink.on_reply(reply);
+    }
+  }
+
+  /// The board answers set-zero, save and reload with the ids of the motors that did it.
+  void deliver_acknowledgements(const BoardFrame& frame, ReplySink& sink) noexcept {
+    std::array<CommandResult, kMaxBoardPayload> results;
+    const std::size_t count = decode_board_acknowledgements(frame.command, frame.bytes(), results);
+    for (std::size_t i = 0; i < count; ++i) {
+      Reply reply;
+      reply.kind = Reply::Kind::kResult;
+      reply.result = results[i];
       sink.on_reply(reply);
     }
   }

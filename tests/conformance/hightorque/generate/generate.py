@@ -171,6 +171,18 @@ def main() -> None:
                 "files": BOARD_FILES,
             },
         ],
+        "stand_ins": [
+            "fdcan_send() records each frame with bit 15 set (the current SDK's fdcan_send sets it; the stored "
+            "App/my_fdcan/my_fdcan.c predates that) and the bytes after the caller's buffer as 0",
+            "fdcan_stubs/convert.h declares convert.c's functions and data_type_t (TINT16_NOHDR 0, TINT16 1, "
+            "TINT32 2, TFLOAT 3 as hightorque_fdcan.h @1ffbf90d documents); MOTOR_ERR() counts",
+            "fdcan_stubs/main.h defines MOTOR_ID_MIN 1 and FLAUT_POS_VEL_TQE 0x0E (motor.c @1910d4d3 uses "
+            "both; no stored header of that commit defines them)",
+            "single-motor frames: the harness converts with convert.c (conv_to_turns, *_float2int) before "
+            "calling the int16/int32/float builders, as motor_many.c does",
+            "board SDK: ROS parameters from a map, serial::Serial records writes and serves crafted bytes, "
+            "each canport is made in zeroed memory (its packet buffer is otherwise uninitialised)",
+        ],
         "data": {name: len(lines) for name, lines in by_file.items()},
     }
     with open(args.out / "provenance.json", "w", encoding="utf-8") as out:
