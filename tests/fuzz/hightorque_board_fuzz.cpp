@@ -78,11 +78,13 @@ std::vector<MotorRequest> slots_round(BoardCommand command, std::span<const Moto
   std::vector<BlockSlot> slots;
   for (const MotorRequest& request : requests)
     slots.push_back(BlockSlot{.motor = request.motor, .command = request.command});
-  std::array<std::uint8_t, kMaxBoardPayload> payload{};
-  const std::size_t size = encode_board_slots(command, slots, scaling, payload);
-  FUZZ_CHECK(size != 0);
+  int highest = 0;
+  for (const MotorRequest& request : requests) highest = std::max(highest, request.motor);
+  BoardSlotBuffer buffer(highest);
+  const std::span<const std::uint8_t> payload = buffer.update(command, slots, scaling);
+  FUZZ_CHECK(!payload.empty());
   std::vector<MotorRequest> decoded(requests.size());
-  FUZZ_CHECK(decode_board_slots(command, std::span(payload).first(size), scaling, decoded) == requests.size());
+  FUZZ_CHECK(decode_board_slots(command, payload, scaling, decoded) == requests.size());
   return decoded;
 }
 
@@ -107,7 +109,9 @@ void read_slots(const BoardFrame& frame, std::span<const MotorScaling> scaling) 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   FuzzInput input(data, size);
   const std::uint8_t piece = input.u8();
-  const std::vector<MotorScaling> scaling(std::size_t{input.u8()} + 1, kBoardScaling);  // [0] unused
+  // A port has motors 1…30 at most.
+  const std::size_t highest = std::min<std::size_t>(input.u8(), kMaxMotorId);
+  const std::vector<MotorScaling> scaling(highest + 1, kBoardScaling);  // [0] unused
 
   BoardFrameSplitter splitter;
   std::size_t fed = 0;

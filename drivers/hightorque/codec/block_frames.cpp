@@ -2,7 +2,6 @@
 // motor_many.c): int16 slots of motors in id order under id 0x18000 | block code, the query
 // code in the last byte of the padded frame.
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -14,15 +13,22 @@
 namespace robotd::hightorque {
 namespace {
 
-constexpr std::size_t kMaxBlockFrames = 5;  // MIT: 0x98…0x9C
-constexpr std::uint8_t kFlagSet = 1;        // 1-byte slots: non-zero = apply
+constexpr std::uint8_t kFlagSet = 1;  // 1-byte slots: non-zero = apply
 
-/// Marks every slot unset, padding included (the vendor pads with stale bytes; unset slots keep a
-/// motor beyond the last commanded one from reading the padding as a command).
-void fill_unset(const layouts::BlockForm& form, transport::CanMessage& message) {
-  if (form.fields.empty()) return;  // flag slots: 0 is already "not this motor"
-  const std::size_t fields = form.slots_in(message.length) * form.fields.size();
-  for (std::size_t field = 0; field < fields; ++field) wire::put_u16(message.data, 2 * field, wire::kUnset16);
+/// A frame carrying the slots of `count` motors, every one unset (2-byte fields 0x8000, flags 0)
+/// and the query code last. The padding before the query code holds unset slots where whole
+/// ones fit, 0 after them: a motor that reads a slot from the padding sees no command (the
+/// vendor leaves whatever its buffer held there).
+transport::CanMessage unset_frame(const layouts::BlockForm& form, std::size_t frame, std::size_t count, Query query) {
+  transport::CanMessage message = wire::fd_frame(command_id(Width::kInt16, form.first_code + static_cast<int>(frame)),
+                                                 count * form.slot_bytes() + 1);
+  if (!form.fields.empty()) {
+    for (std::size_t field = 0; field < form.slots_in(message.length) * form.fields.size(); ++field) {
+      wire::put_u16(message.data, 2 * field, wire::kUnset16);
+    }
+  }
+  message.data[message.length - 1U] = static_cast<std::uint8_t>(query);
+  return message;
 }
 
 void write_slot(const layouts::BlockForm& form, const BlockSlot& slot, const MotorScaling& scaling,
@@ -39,45 +45,31 @@ void write_slot(const layouts::BlockForm& form, const BlockSlot& slot, const Mot
 }  // namespace
 
 std::size_t encode_block(std::span<const BlockSlot> slots, Query query,
-                         std::span<const MotorScaling> scaling_by_motor_id,
+                         std::span<const MotorScaling> scaling_by_motor_id, int motor_count,
                          std::span<transport::CanMessage> out) noexcept {
-  if (slots.empty()) return 0;
+  if (slots.empty() || motor_count < kMinMotorId || motor_count > kMaxBlockMotorId) return 0;
   const Mode mode = slots.front().command.mode;
   const layouts::BlockForm* form = layouts::block_form_for_mode(mode);
   if (form == nullptr) return 0;
-
-  // Per frame of the form: how many slots it needs (its highest commanded motor), 0 = not sent.
-  std::array<std::size_t, kMaxBlockFrames> slots_in_frame{};
   for (const BlockSlot& slot : slots) {
-    if (slot.command.mode != mode || slot.motor < kMinMotorId || slot.motor > kMaxBlockMotorId ||
+    if (slot.command.mode != mode || slot.motor < kMinMotorId || slot.motor > motor_count ||
         static_cast<std::size_t>(slot.motor) >= scaling_by_motor_id.size()) {
       return 0;
     }
-    const auto index = static_cast<std::size_t>(slot.motor - 1);
-    std::size_t& needed = slots_in_frame[index / form->motors_per_frame];
-    needed = std::max(needed, index % form->motors_per_frame + 1);
   }
-  const auto frames = static_cast<std::size_t>(
-      std::count_if(slots_in_frame.begin(), slots_in_frame.end(), [](std::size_t needed) { return needed > 0; }));
+  // Every motor of the port has its slot, as the vendor sends them: ⌈motor_count / per frame⌉ frames.
+  const auto motors = static_cast<std::size_t>(motor_count);
+  const std::size_t frames = (motors + form->motors_per_frame - 1) / form->motors_per_frame;
   if (frames > out.size()) return 0;
-
-  // Where each frame of the form lands in `out`.
-  std::array<std::size_t, kMaxBlockFrames> position{};
-  std::size_t written = 0;
-  for (std::size_t frame = 0; frame < form->frames; ++frame) {
-    if (slots_in_frame[frame] == 0) continue;
-    transport::CanMessage& message = out[written];
-    message = wire::fd_frame(command_id(Width::kInt16, form->first_code + static_cast<int>(frame)),
-                             slots_in_frame[frame] * form->slot_bytes() + 1);
-    fill_unset(*form, message);
-    message.data[message.length - 1U] = static_cast<std::uint8_t>(query);
-    position[frame] = written++;
+  for (std::size_t frame = 0; frame < frames; ++frame) {
+    const std::size_t first = frame * form->motors_per_frame;
+    out[frame] = unset_frame(*form, frame, std::min<std::size_t>(form->motors_per_frame, motors - first), query);
   }
   for (const BlockSlot& slot : slots) {
     const auto frame = static_cast<std::size_t>(slot.motor - 1) / form->motors_per_frame;
-    write_slot(*form, slot, scaling_by_motor_id[static_cast<std::size_t>(slot.motor)], out[position[frame]]);
+    write_slot(*form, slot, scaling_by_motor_id[static_cast<std::size_t>(slot.motor)], out[frame]);
   }
-  return written;
+  return frames;
 }
 
 }  // namespace robotd::hightorque

@@ -1,7 +1,9 @@
 // The USB-CDC board's packet framing (§1.6.3, errata "USB-CDC board framing", the SDK's
 // lively_serial.cc): F7, cmd, len LE16, CRC-8 over cmd + len, CRC-16 over the payload (LE16,
-// before the payload), payload; and re-framing a tty byte stream into packets.
+// before the payload), payload; the admin and timeout packets of canport.cc; and re-framing a
+// tty byte stream into packets.
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -30,6 +32,20 @@ std::size_t encode_board_frame(BoardCommand command, std::span<const std::uint8_
   wire::put_u16(out, kCrc16At, board_crc16(payload));
   std::copy(payload.begin(), payload.end(), out.subspan(kBoardHeaderSize).begin());
   return kBoardHeaderSize + payload.size();
+}
+
+std::size_t encode_board_admin(BoardCommand command, int motor, std::span<std::uint8_t> out) noexcept {
+  if (motor < 0 || motor > 0xFF) return 0;
+  const std::array<std::uint8_t, 1> payload{static_cast<std::uint8_t>(motor)};
+  return encode_board_frame(command, payload, out);
+}
+
+std::size_t encode_board_timeout(std::uint16_t timeout_ms, int motor_count, std::span<std::uint8_t> out) noexcept {
+  if (motor_count < kMinMotorId || motor_count > kMaxMotorId) return 0;
+  std::array<std::uint8_t, std::size_t{2} * kMaxMotorId> payload{};
+  const auto size = std::size_t{2} * static_cast<std::size_t>(motor_count);
+  for (std::size_t at = 0; at < size; at += 2) wire::put_u16(payload, at, timeout_ms);
+  return encode_board_frame(BoardCommand::kTimeout, std::span(payload).first(size), out);
 }
 
 std::size_t BoardFrameSplitter::feed(std::span<const std::uint8_t> bytes) noexcept {

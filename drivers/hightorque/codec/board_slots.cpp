@@ -25,11 +25,12 @@ struct SlotForm {
   std::span<const Field> fields;
 };
 
-constexpr std::array<SlotForm, 5> kSlotForms{{
+constexpr std::array<SlotForm, 6> kSlotForms{{
     {BoardCommand::kPosition, Mode::kPosition, layouts::kPositionFields},
     {BoardCommand::kVelocity, Mode::kVelocity, layouts::kVelocityFields},
     {BoardCommand::kTorque, Mode::kTorque, layouts::kTorqueFields},
     {BoardCommand::kPositionVelocityTorqueMax, Mode::kPositionVelocityTorque, layouts::kPositionVelocityTorqueFields},
+    {BoardCommand::kPositionVelocityTorqueKpKdV1, Mode::kMit, layouts::kMitFields},
     {BoardCommand::kPositionVelocityTorqueKpKd, Mode::kMit, layouts::kMitFields},
 }};
 
@@ -40,38 +41,53 @@ const SlotForm* slot_form(BoardCommand command) {
   return nullptr;
 }
 
+constexpr std::int16_t kBoardLimit = std::numeric_limits<std::int16_t>::max();
 constexpr std::int16_t kBoardGainLimit = 32700;  // the SDK's int16_limit() on kp / kd
 
-/// Board counts per motor unit: pos 1e-4 rev, vel 2.5e-4 rev/s, τ in the model's LSB (the
-/// MotorScaling factor does it all), gains ×10.
-constexpr double board_counts_per_unit(units::Quantity quantity) {
-  switch (quantity) {
-    case units::Quantity::kPosition:
-      return 1e4;
-    case units::Quantity::kVelocity:
-      return 4e3;
-    case units::Quantity::kGain:
-      return 1e1;
-    default:
-      return 1.0;
-  }
-}
-
-/// A field's board count: truncated toward zero and saturated like the SDK; NaN reads as the
-/// board's "unset" (0x8000 for a position, 0 for the rest).
-std::uint16_t board_raw(Field field, double value, const MotorScaling& scaling) {
-  const units::Quantity quantity = layouts::quantity(field);
-  if (std::isnan(value)) return field == Field::kPosition ? wire::kUnset16 : std::uint16_t{0};
-  const double counts = units::to_motor(quantity, value, scaling) * board_counts_per_unit(quantity);
-  const std::int16_t limit =
-      quantity == units::Quantity::kGain ? kBoardGainLimit : std::numeric_limits<std::int16_t>::max();
+std::uint16_t raw16(double counts, std::int16_t limit = kBoardLimit) {
   return static_cast<std::uint16_t>(wire::truncate<std::int16_t>(counts, limit));
 }
 
+/// A field's board count as the SDK's motor.cc computes it: position (float)rad / 2π_f × 1e4 and
+/// velocity × 4e3 (the quotient in float, the product in double), torque (τ − d) / k in double,
+/// gains (float)(kp / k_pid) × 10 × 2π_f in float and saturated at ±32700; then truncated
+/// (saturated at ±32767 where the SDK's cast wraps). NaN reads as the board's "unset" (0x8000
+/// for a position, 0 for the rest).
+std::uint16_t board_raw(Field field, double value, const MotorScaling& scaling) {
+  if (std::isnan(value)) return field == Field::kPosition ? wire::kUnset16 : std::uint16_t{0};
+  const auto given = static_cast<float>(value);
+  switch (layouts::quantity(field)) {
+    case units::Quantity::kPosition:
+      return raw16(static_cast<double>(given / units::kTwoPiF) * 1e4);
+    case units::Quantity::kVelocity:
+      return raw16(static_cast<double>(given / units::kTwoPiF) * 4e3);
+    case units::Quantity::kTorque:
+      return raw16((static_cast<double>(given) - scaling.torque_offset_nm) / scaling.torque_per_unit);
+    case units::Quantity::kGain: {
+      const auto per_unit = static_cast<float>(static_cast<double>(given) / scaling.gain_factor);
+      return raw16(static_cast<double>(per_unit * 10.0F * units::kTwoPiF), kBoardGainLimit);
+    }
+    default:
+      return raw16(static_cast<double>(given));
+  }
+}
+
+/// A board count back in robotd's units, as the SDK's fresh_data() reads a state record:
+/// position (float)(raw × 2π_f / 1e4), velocity / 4e3, torque (float)(raw × k + d).
 double board_value(Field field, std::uint16_t raw, const MotorScaling& scaling) {
-  if (field == Field::kPosition && raw == wire::kUnset16) return std::numeric_limits<double>::quiet_NaN();
-  const units::Quantity quantity = layouts::quantity(field);
-  return units::from_motor(quantity, static_cast<std::int16_t>(raw) / board_counts_per_unit(quantity), scaling);
+  const auto counts = static_cast<std::int16_t>(raw);
+  switch (layouts::quantity(field)) {
+    case units::Quantity::kPosition:
+      return static_cast<float>(static_cast<double>(counts * units::kTwoPiF) / 1e4);
+    case units::Quantity::kVelocity:
+      return static_cast<float>(static_cast<double>(counts * units::kTwoPiF) / 4e3);
+    case units::Quantity::kTorque:
+      return static_cast<float>(counts * scaling.torque_per_unit + scaling.torque_offset_nm);
+    case units::Quantity::kGain:
+      return counts / 10.0 / units::kTwoPiF * scaling.gain_factor;
+    default:
+      return counts;
+  }
 }
 
 bool has_scaling(int motor, std::span<const MotorScaling> scaling_by_motor_id) {
@@ -87,34 +103,35 @@ std::size_t state_record_size(BoardCommand command) {
 
 }  // namespace
 
-std::size_t encode_board_slots(BoardCommand command, std::span<const BlockSlot> slots,
-                               std::span<const MotorScaling> scaling_by_motor_id,
-                               std::span<std::uint8_t> out) noexcept {
+BoardSlotBuffer::BoardSlotBuffer(int motor_count) noexcept : motor_count_(motor_count) {}
+
+std::span<const std::uint8_t> BoardSlotBuffer::update(BoardCommand command, std::span<const BlockSlot> slots,
+                                                      std::span<const MotorScaling> scaling_by_motor_id) noexcept {
   const SlotForm* form = slot_form(command);
-  if (form == nullptr) return 0;
-  std::size_t highest = 0;
+  if (form == nullptr || motor_count_ < kMinMotorId || motor_count_ > kMaxMotorId) return {};
   for (const BlockSlot& slot : slots) {
-    if (!has_scaling(slot.motor, scaling_by_motor_id)) return 0;
-    highest = std::max(highest, static_cast<std::size_t>(slot.motor));
+    if (!has_scaling(slot.motor, scaling_by_motor_id) || slot.motor > motor_count_) return {};
   }
   const std::size_t slot_bytes = 2 * form->fields.size();
-  const std::size_t size = highest * slot_bytes;
-  if (size > out.size() || size > kMaxBoardPayload) return 0;
-
-  // A mode change resets every slot on the board: position unset, the rest 0.
-  for (std::size_t at = 0; at < size; at += 2) {
-    const bool position = form->fields[(at % slot_bytes) / 2] == Field::kPosition;
-    wire::put_u16(out, at, position ? wire::kUnset16 : std::uint16_t{0});
+  const std::size_t size = static_cast<std::size_t>(motor_count_) * slot_bytes;
+  if (!has_command_ || command != command_) {
+    // A mode change resets every slot: position unset, the rest 0.
+    for (std::size_t at = 0; at < size; at += 2) {
+      const bool position = form->fields[(at % slot_bytes) / 2] == Field::kPosition;
+      wire::put_u16(payload_, at, position ? wire::kUnset16 : std::uint16_t{0});
+    }
+    has_command_ = true;
+    command_ = command;
   }
   for (const BlockSlot& slot : slots) {
     const MotorScaling& scaling = scaling_by_motor_id[static_cast<std::size_t>(slot.motor)];
     std::size_t at = static_cast<std::size_t>(slot.motor - 1) * slot_bytes;
     for (const Field field : form->fields) {
-      wire::put_u16(out, at, board_raw(field, layouts::value(slot.command, field), scaling));
+      wire::put_u16(payload_, at, board_raw(field, layouts::value(slot.command, field), scaling));
       at += 2;
     }
   }
-  return size;
+  return std::span(payload_).first(size);
 }
 
 std::size_t decode_board_slots(BoardCommand command, std::span<const std::uint8_t> payload,
@@ -134,7 +151,10 @@ std::size_t decode_board_slots(BoardCommand command, std::span<const std::uint8_
     request.command.mode = form->mode;
     std::size_t at = slot * slot_bytes;
     for (const Field field : form->fields) {
-      layouts::assign(request, field, board_value(field, wire::get_u16(payload, at), scaling));
+      const std::uint16_t raw = wire::get_u16(payload, at);
+      const bool unset = field == Field::kPosition && raw == wire::kUnset16;
+      layouts::assign(request, field,
+                      unset ? std::numeric_limits<double>::quiet_NaN() : board_value(field, raw, scaling));
       at += 2;
     }
   }

@@ -1,4 +1,5 @@
-// The board's kVersion answer: each motor's firmware version, one 4-byte record per motor.
+// The board's per-motor answers: kVersion (each motor's firmware version, one 4-byte record per
+// motor) and the acknowledgements of kResetZero / kSave / kReloadConfig (one id byte per motor).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -11,6 +12,19 @@ namespace {
 bool fits_a_byte(int value) { return value >= 0 && value <= 0xFF; }
 
 }  // namespace
+
+std::size_t decode_board_acknowledgements(BoardCommand command, std::span<const std::uint8_t> payload,
+                                          std::span<CommandResult> out) noexcept {
+  if (command != BoardCommand::kResetZero && command != BoardCommand::kSave && command != BoardCommand::kReloadConfig) {
+    return 0;
+  }
+  std::size_t written = 0;
+  for (const std::uint8_t motor : payload) {
+    if (motor == 0 || written == out.size()) continue;
+    out[written++] = CommandResult{.motor = motor, .success = true, .code = 0};
+  }
+  return written;
+}
 
 std::size_t decode_board_versions(std::span<const std::uint8_t> payload, std::span<FirmwareVersion> out) noexcept {
   std::size_t written = 0;

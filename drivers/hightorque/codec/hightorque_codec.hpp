@@ -6,9 +6,13 @@
 // Units at this surface are robotd's: rad, rad/s, rad/s², N·m, and gains in N·m/rad and
 // N·m·s/rad. Revolutions, the int16/int32 scalings, the board's per-model torque factors and the
 // gain conversion exist only inside this codec, driven by MotorScaling (from config).
-// Float → integer conversion truncates toward zero like the vendor's C code and saturates
-// (never wraps) at ±32767 / ±2147483647, so that no finite value becomes the "no value"
-// sentinel; NaN encodes as that sentinel (0x8000 / 0x80000000 / NaN) and decodes back as NaN.
+// Scaling follows the vendor's code operation for operation: the value as a float, turned into
+// revolutions and multiplied by the width's scale in float (the motor firmware SDK's convert.c;
+// the board SDK's motor.cc for the board), then truncated toward zero. Unlike the vendor's code
+// it saturates (never wraps) at ±32767 / ±2147483647, so that no finite value becomes the "no
+// value" sentinel; NaN encodes as that sentinel (0x8000 / 0x80000000 / NaN). In a command the
+// sentinel decodes as NaN ("no value"); in a reply it is a number (0x8000 = −32768, a saturated
+// reading), as the vendor's parsers read it.
 //
 // Everything on the motor's hot path (encode_* into CanMessage or a caller's byte span,
 // decode_reply, BoardFrameSplitter) is noexcept and allocation-free: robotd's RT thread calls it.
@@ -22,14 +26,18 @@
 #include <span>
 #include <string_view>
 
+#include "robotd/result.hpp"
 #include "robotd/transport/can_message.hpp"
 
 namespace robotd::hightorque {
 
+// Motor ids 1…30: the vendor's SDKs keep at most 30 motors a port (motor_many.h, the board's
+// PORT_MOTOR_NUM_MAX) and drop replies of higher ids; block frames address motors 1…30. The 7-bit
+// id field of the wire would carry 1…126.
 inline constexpr int kMinMotorId = 1;
-inline constexpr int kMaxMotorId = 126;
+inline constexpr int kMaxMotorId = 30;
 inline constexpr int kBroadcastId = 127;
-inline constexpr int kMaxBlockMotorId = 30;  // one-to-many block frames address motors 1…30
+inline constexpr int kMaxBlockMotorId = kMaxMotorId;
 
 // ---- Scaling -------------------------------------------------------------------------------
 
@@ -100,32 +108,35 @@ transport::CanMessage encode_command(int motor, const MotorCommand& command, Wid
 
 /// One motor's slot in a one-to-many block frame.
 struct BlockSlot {
-  int motor = 0;  // 1…126
+  int motor = 0;  // 1…30
   MotorCommand command;
 };
 
-/// Block frames for a whole bus in as few frames as the protocol allows (int16 only; motors
-/// 1…kMaxBlockMotorId): MIT slots go in 0x98…0x9C frames (6 motors per frame, 10 bytes each,
-/// motors 1–6 in 0x98, 7–12 in 0x99, …), kPositionVelocityTorque in 0x92…0x94 and
-/// kPositionVelocityAcceleration in 0x95…0x97 (10 per frame), kVelocityAcceleration in
-/// 0x90…0x91 (15 per frame), kStop / kBrake in 0x85 / 0x86 (1 byte per motor), position /
-/// velocity / torque / voltage q / current q in 0x80…0x84 (30 per frame). A frame carries slots
-/// up to its highest commanded motor; frames with no commanded motor are not sent.
-/// Every slot must have the same mode (the mode of slots[0]); slots need not be sorted; unset
-/// 2-byte fields are 0x8000, unset 1-byte slots 0, and the padding reads as unset slots. The
-/// query code is the padded frame's last byte. `scaling_by_motor_id` is indexed by motor id
-/// (element 0 unused): one frame may carry motors of different models. Returns the number of
-/// frames written to `out`, or 0 if there are no slots, they do not fit `out`, mix modes, name a
-/// motor outside 1…30 or without scaling, or use a mode that has no block form.
+/// Block frames for a bus of motors 1…`motor_count` (int16 only; `motor_count` ≤
+/// kMaxBlockMotorId), every motor's slot in every tick as the vendor's motor_many.c sends them:
+/// MIT slots go in 0x98…0x9C frames (6 motors per frame, 10 bytes each, motors 1–6 in 0x98,
+/// 7–12 in 0x99, …), kPositionVelocityTorque in 0x92…0x94 and kPositionVelocityAcceleration in
+/// 0x95…0x97 (10 per frame), kVelocityAcceleration in 0x90…0x91 (15 per frame), kStop / kBrake
+/// in 0x85 / 0x86 (1 byte per motor), position / velocity / torque / voltage q / current q in
+/// 0x80…0x84 (30 per frame); the last frame carries the remaining motors.
+/// Every slot must have the same mode (the mode of slots[0]); slots need not be sorted; the
+/// motors not in `slots` get the "no value" marker (0x8000 in every 2-byte field, 0 in a 1-byte
+/// slot). The query code is the padded frame's last byte, the padding before it 0.
+/// `scaling_by_motor_id` is indexed by motor id (element 0 unused): one frame may carry motors
+/// of different models. Returns the number of frames written to `out`, or 0 if there are no
+/// slots, they do not fit `out`, mix modes, name a motor outside 1…motor_count or without
+/// scaling, or use a mode that has no block form.
 std::size_t encode_block(std::span<const BlockSlot> slots, Query query,
-                         std::span<const MotorScaling> scaling_by_motor_id,
+                         std::span<const MotorScaling> scaling_by_motor_id, int motor_count,
                          std::span<transport::CanMessage> out) noexcept;
 
 /// System commands (int16 id to one motor).
-transport::CanMessage encode_soft_reboot(int motor) noexcept;            // 03 03 01
-transport::CanMessage encode_save_to_flash(int motor) noexcept;          // 03 03 02
-transport::CanMessage encode_set_zero(int motor) noexcept;               // 03 03 03
-transport::CanMessage encode_change_id(int motor, int new_id) noexcept;  // 03 03 04 <id>
+transport::CanMessage encode_soft_reboot(int motor) noexcept;    // 03 03 01
+transport::CanMessage encode_save_to_flash(int motor) noexcept;  // 03 03 02
+transport::CanMessage encode_set_zero(int motor) noexcept;       // 03 03 03
+/// 03 03 04 <new id>; an error naming the id when `motor` or `new_id` is outside 1…kMaxMotorId
+/// (the vendor's hightorque_id() refuses those too: a reply from such an id is never read).
+Result<transport::CanMessage> encode_change_id(int motor, int new_id);
 /// 05 <ms LE16>: the motor brakes by itself when no command arrives for `timeout_ms`; 0 disarms.
 transport::CanMessage encode_command_timeout(int motor, std::uint16_t timeout_ms) noexcept;
 /// 03 00 05 <query> <µs LE32>: periodic status push; 0 stops; the motor refuses < 100 µs.
@@ -261,7 +272,8 @@ enum class BoardCommand : std::uint8_t {
   kTorque = 0x82,
   kTimeout = 0x85,
   kPositionVelocityTorqueMax = 0x90,
-  kPositionVelocityTorqueKpKd = 0xB0,  // "v2" MIT-like: pos, vel, τ, kp, kd per motor
+  kPositionVelocityTorqueKpKdV1 = 0x93,  // the SDK's control_type 9: pos, vel, τ, kp, kd per motor
+  kPositionVelocityTorqueKpKd = 0xB0,    // control_type 12, boards with function version 5: the same slots
 };
 
 /// Writes one framed packet into `out`; returns its size, or 0 if it does not fit or the
@@ -269,16 +281,43 @@ enum class BoardCommand : std::uint8_t {
 std::size_t encode_board_frame(BoardCommand command, std::span<const std::uint8_t> payload,
                                std::span<std::uint8_t> out) noexcept;
 
-/// One port's slots: motor ids 1…highest, each `slot` int16 values wide, in id order; ids not
-/// in `slots` get position 0x8000 and 0 elsewhere (NaN fields likewise). For
-/// kPositionVelocityTorqueKpKd (5 values), kPositionVelocityTorqueMax (3 values) and kPosition /
-/// kVelocity / kTorque (1 value); board units from MotorScaling (pos 1e-4 rev, vel 2.5e-4 rev/s,
-/// τ via torque_per_unit/offset, gains ×10 after the gain conversion, saturated at ±32700).
-/// `scaling_by_motor_id` is indexed by motor id (element 0 unused). Returns the
-/// payload size, 0 if it does not fit, the command has no slot form, or a slot names motor 0 or
-/// a motor without scaling.
-std::size_t encode_board_slots(BoardCommand command, std::span<const BlockSlot> slots,
-                               std::span<const MotorScaling> scaling_by_motor_id, std::span<std::uint8_t> out) noexcept;
+/// Writes one admin packet (kResetZero, kSave, kStop, kBrake, kMotorState, kMotorState2,
+/// kReloadConfig, kReboot, kVersion, kSetMotorCount) into `out`: a one-byte payload naming a
+/// motor, kBroadcastId for every motor of the port (kSetMotorCount: the port's motor count).
+/// Returns its size, 0 if it does not fit or `motor` is not a byte.
+std::size_t encode_board_admin(BoardCommand command, int motor, std::span<std::uint8_t> out) noexcept;
+/// Writes the 0x85 packet that arms every motor's command timeout: `timeout_ms` LE16 in the
+/// slots of motors 1…motor_count (the SDK's canport::set_time_out). Returns its size, 0 if it
+/// does not fit or motor_count is outside 1…kMaxMotorId.
+std::size_t encode_board_timeout(std::uint16_t timeout_ms, int motor_count, std::span<std::uint8_t> out) noexcept;
+
+/// One port's command slots as the board SDK keeps them (motor.cc): a slot for every motor id
+/// 1…motor_count, each the command's int16 values wide, in id order. A command other than the
+/// last one resets every slot (position 0x8000, the rest 0); then each update overwrites the
+/// slots of the motors it commands, and every other motor keeps the values it was last sent.
+/// For kPositionVelocityTorqueKpKd / kPositionVelocityTorqueKpKdV1 (5 values),
+/// kPositionVelocityTorqueMax (3 values) and kPosition / kVelocity / kTorque (1 value), in the
+/// SDK's units and arithmetic: position 1e-4 rev, velocity 2.5e-4 rev/s, τ (τ − torque_offset_nm)
+/// / torque_per_unit, gains kp / gain_factor × 10 × 2π saturated at ±32700 (NaN fields leave
+/// the slot's "unset" value: position 0x8000, the rest 0).
+class BoardSlotBuffer {
+ public:
+  /// A port whose highest motor id is `motor_count` (1…kMaxMotorId; otherwise every update fails).
+  explicit BoardSlotBuffer(int motor_count) noexcept;
+  /// This cycle's payload (valid until the next call), or empty — leaving the slots as they
+  /// were — if the command has no slot form or a slot names a motor outside 1…motor_count or
+  /// without scaling. `scaling_by_motor_id` is indexed by motor id (element 0 unused).
+  std::span<const std::uint8_t> update(BoardCommand command, std::span<const BlockSlot> slots,
+                                       std::span<const MotorScaling> scaling_by_motor_id) noexcept;
+  /// Forgets the kept slots (a reconnected board starts from unset slots too).
+  void reset() noexcept { has_command_ = false; }
+
+ private:
+  int motor_count_;
+  bool has_command_ = false;
+  BoardCommand command_ = BoardCommand::kPosition;
+  std::array<std::uint8_t, kMaxBoardPayload> payload_{};
+};
 
 /// A motor's state record in a kMotorState2 packet: id, mode, fault, pos, vel, τ (int16);
 /// kMotorState records lack mode and fault.
@@ -303,6 +342,11 @@ std::size_t decode_board_states(BoardCommand command, std::span<const std::uint8
 std::size_t encode_board_states(BoardCommand command, std::span<const BoardMotorState> states,
                                 std::span<const MotorScaling> scaling_by_motor_id,
                                 std::span<std::uint8_t> out) noexcept;
+/// The board's answer to kResetZero, kSave and kReloadConfig: the ids of the motors that did it,
+/// one byte each. Writes a successful CommandResult per id (id 0 skipped) into `out` and returns
+/// how many; 0 for any other command.
+std::size_t decode_board_acknowledgements(BoardCommand command, std::span<const std::uint8_t> payload,
+                                          std::span<CommandResult> out) noexcept;
 /// A kVersion answer: one [id, major, minor, patch] record per motor. Decodes into `out` and
 /// returns how many; stops at a truncated record or when `out` is full; skips motor 0.
 inline constexpr std::size_t kBoardVersionRecordSize = 4;

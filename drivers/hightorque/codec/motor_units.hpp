@@ -38,17 +38,40 @@ constexpr double counts_per_unit(Quantity quantity, Width width) noexcept {
   return 1.0;
 }
 
-/// robotd's unit → the motor's.
-inline double to_motor(Quantity quantity, double value, const MotorScaling& scaling) noexcept {
+/// The vendors' 2π, a float literal in both SDKs (convert.c MY_2PI, motor.h my_2pi).
+inline constexpr float kTwoPiF = 6.28318530717F;
+
+/// robotd's unit → the motor's, in float like the vendor's code: its functions take float, turn
+/// radians into revolutions by a float division by its 2π and multiply gains by it in float.
+inline float to_motor(Quantity quantity, double value, const MotorScaling& scaling) noexcept {
+  const auto given = static_cast<float>(value);
   switch (quantity) {
     case Quantity::kPosition:
     case Quantity::kVelocity:
     case Quantity::kAcceleration:
-      return value / kTwoPi;
+      return given / kTwoPiF;
     case Quantity::kTorque:
-      return (value - scaling.torque_offset_nm) / scaling.torque_per_unit;
+      return static_cast<float>((static_cast<double>(given) - scaling.torque_offset_nm) / scaling.torque_per_unit);
     case Quantity::kGain:
-      return value * kTwoPi / scaling.gain_factor;
+      return given * kTwoPiF / static_cast<float>(scaling.gain_factor);
+    case Quantity::kElectrical:
+    case Quantity::kTemperature:
+      return given;
+  }
+  return given;
+}
+
+/// The motor's unit → robotd's (float arithmetic, as the vendor's parser).
+inline double from_motor(Quantity quantity, float value, const MotorScaling& scaling) noexcept {
+  switch (quantity) {
+    case Quantity::kPosition:
+    case Quantity::kVelocity:
+    case Quantity::kAcceleration:
+      return value * kTwoPiF;
+    case Quantity::kTorque:
+      return static_cast<float>(value * scaling.torque_per_unit + scaling.torque_offset_nm);
+    case Quantity::kGain:
+      return value * static_cast<float>(scaling.gain_factor) / kTwoPiF;
     case Quantity::kElectrical:
     case Quantity::kTemperature:
       return value;
@@ -56,32 +79,17 @@ inline double to_motor(Quantity quantity, double value, const MotorScaling& scal
   return value;
 }
 
-/// The motor's unit → robotd's.
-inline double from_motor(Quantity quantity, double value, const MotorScaling& scaling) noexcept {
-  switch (quantity) {
-    case Quantity::kPosition:
-    case Quantity::kVelocity:
-    case Quantity::kAcceleration:
-      return value * kTwoPi;
-    case Quantity::kTorque:
-      return value * scaling.torque_per_unit + scaling.torque_offset_nm;
-    case Quantity::kGain:
-      return value * scaling.gain_factor / kTwoPi;
-    case Quantity::kElectrical:
-    case Quantity::kTemperature:
-      return value;
-  }
-  return value;
+/// A value in robotd's units as wire counts at `width` before truncation: the float product of
+/// the motor's value and the width's scale (convert.c data_float2int).
+inline float to_counts(Quantity quantity, double value, Width width, const MotorScaling& scaling) noexcept {
+  return to_motor(quantity, value, scaling) * static_cast<float>(counts_per_unit(quantity, width));
 }
 
-/// A value in robotd's units as wire counts at `width` (before truncation).
-inline double to_counts(Quantity quantity, double value, Width width, const MotorScaling& scaling) noexcept {
-  return to_motor(quantity, value, scaling) * counts_per_unit(quantity, width);
-}
-
-/// Wire counts at `width` back into robotd's units (NaN stays NaN).
+/// Wire counts at `width` back into robotd's units: the counts as a float divided by the width's
+/// scale in float (convert.c data_int2float); NaN stays NaN.
 inline double from_counts(Quantity quantity, double counts, Width width, const MotorScaling& scaling) noexcept {
-  return from_motor(quantity, counts / counts_per_unit(quantity, width), scaling);
+  return from_motor(quantity, static_cast<float>(counts) / static_cast<float>(counts_per_unit(quantity, width)),
+                    scaling);
 }
 
 }  // namespace robotd::hightorque::units

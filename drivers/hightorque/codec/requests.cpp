@@ -19,7 +19,8 @@ void decode_fields(std::span<const layouts::Field> fields, wire::ConstBytes byte
                    const MotorScaling& scaling, MotorRequest& request) {
   for (const layouts::Field field : fields) {
     const units::Quantity quantity = layouts::quantity(field);
-    layouts::assign(request, field, units::from_counts(quantity, wire::get_counts(bytes, at, width), width, scaling));
+    layouts::assign(request, field,
+                    units::from_counts(quantity, wire::get_command_counts(bytes, at, width), width, scaling));
     at += wire::width_bytes(width);
   }
 }

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <string>
+#include <utility>
 
 #include "hightorque_codec.hpp"
 #include "wire_scaling.hpp"
@@ -35,8 +37,15 @@ transport::CanMessage encode_save_to_flash(int motor) noexcept {
 
 transport::CanMessage encode_set_zero(int motor) noexcept { return system_frame(motor, {kSystem, kConfigure, 0x03}); }
 
-transport::CanMessage encode_change_id(int motor, int new_id) noexcept {
-  return system_frame(motor, {kSystem, kConfigure, 0x04, static_cast<std::uint8_t>(new_id & 0x7F)});
+Result<transport::CanMessage> encode_change_id(int motor, int new_id) {
+  for (const auto& [what, id] : {std::pair{"motor", motor}, std::pair{"new id", new_id}}) {
+    if (id < kMinMotorId || id > kMaxMotorId) {
+      return make_error(ErrorCode::kInvalidArgument, std::string("change id: ") + what + " " + std::to_string(id) +
+                                                         " is outside the motor ids " + std::to_string(kMinMotorId) +
+                                                         "…" + std::to_string(kMaxMotorId));
+    }
+  }
+  return system_frame(motor, {kSystem, kConfigure, 0x04, static_cast<std::uint8_t>(new_id)});
 }
 
 // Neither vendor SDK builds this frame; the layout is the protocol document's ("05 F4 01" for

@@ -69,21 +69,25 @@ inline void put_counts(Bytes bytes, std::size_t at, Width width, double value) n
   }
 }
 
-/// Reads a field at `width` in wire counts; the sentinel reads as NaN.
+/// Reads a field at `width` in wire counts as the vendor's reply parser does: every value is a
+/// number, 0x8000 included (−32768; a saturated reading, not "no value").
 inline double get_counts(ConstBytes bytes, std::size_t at, Width width) noexcept {
   switch (width) {
-    case Width::kInt16: {
-      const std::uint16_t raw = get_u16(bytes, at);
-      return raw == kUnset16 ? std::numeric_limits<double>::quiet_NaN() : static_cast<std::int16_t>(raw);
-    }
-    case Width::kInt32: {
-      const std::uint32_t raw = get_u32(bytes, at);
-      return raw == kUnset32 ? std::numeric_limits<double>::quiet_NaN() : static_cast<std::int32_t>(raw);
-    }
+    case Width::kInt16:
+      return static_cast<std::int16_t>(get_u16(bytes, at));
+    case Width::kInt32:
+      return static_cast<std::int32_t>(get_u32(bytes, at));
     case Width::kFloat:
       return std::bit_cast<float>(get_u32(bytes, at));
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Reads a command's field: in a command the sentinel means "no value" and reads as NaN.
+inline double get_command_counts(ConstBytes bytes, std::size_t at, Width width) noexcept {
+  const bool unset = (width == Width::kInt16 && get_u16(bytes, at) == kUnset16) ||
+                     (width == Width::kInt32 && get_u32(bytes, at) == kUnset32);
+  return unset ? std::numeric_limits<double>::quiet_NaN() : get_counts(bytes, at, width);
 }
 
 /// The smallest valid CAN-FD length ≥ `length` (0–8, 12, 16, 20, 24, 32, 48, 64); 64 beyond.

@@ -1,5 +1,6 @@
 // A bus of motors behind the livelybot USB-CDC CAN board: one tty is one CAN port. Each tick is
-// one 0xB0 slot packet (position, velocity, torque, kp, kd per motor id); the board answers with
+// one 0xB0 slot packet (position, velocity, torque, kp, kd per motor id; a motor not commanded
+// this tick keeps the values it was last sent, as in the vendor's SDK); the board answers with
 // a motor-state packet. Port-wide admin packets stand in for the per-motor system commands the
 // board does not have (docs/drivers/hightorque.md says which).
 #include <array>
@@ -20,11 +21,12 @@ constexpr int kMaxReadsPerReceive = 64;
 class BoardBus final : public MotorBus {
  public:
   BoardBus(const transport::SerialConfig& config, const ScalingById& scaling, int highest_id)
-      : port_(config), scaling_(scaling), highest_id_(highest_id) {}
+      : port_(config), scaling_(scaling), highest_id_(highest_id), slots_(highest_id) {}
 
   Result<void> open() override {
     auto opened = port_.open();
     if (opened) port_.flush();
+    slots_.reset();
     splitter_ = BoardFrameSplitter{};
     counted_crc_errors_ = 0;
     counted_skipped_bytes_ = 0;
@@ -35,17 +37,15 @@ class BoardBus final : public MotorBus {
 
   BusIo send_commands(std::span<const BlockSlot> commanded, std::span<const int> /*idle*/,
                       Query /*query*/) noexcept override {
-    // Motors without a command keep an unset slot (the board leaves them as they are); with no
-    // command at all, a state request keeps the feedback coming.
+    // With no command at all, a state request keeps the feedback coming.
     if (commanded.empty()) return send_admin(BoardCommand::kMotorState2);
-    std::array<std::uint8_t, kMaxBoardPayload> payload{};
-    const std::size_t size =
-        encode_board_slots(BoardCommand::kPositionVelocityTorqueKpKd, commanded, scaling_, payload);
-    if (size == 0) {
+    const std::span<const std::uint8_t> payload =
+        slots_.update(BoardCommand::kPositionVelocityTorqueKpKd, commanded, scaling_);
+    if (payload.empty()) {
       ++frames_dropped_;
       return BusIo::kBusy;
     }
-    return send_packet(BoardCommand::kPositionVelocityTorqueKpKd, std::span(payload).first(size));
+    return send_packet(BoardCommand::kPositionVelocityTorqueKpKd, payload);
   }
 
   BusIo send_brake(std::span<const int> /*motors*/, Query /*query*/) noexcept override {
@@ -66,14 +66,9 @@ class BoardBus final : public MotorBus {
         return send_admin(BoardCommand::kReboot);
       case SystemRequest::Kind::kCommandTimeout: {
         // 0x85 is a slot command: every motor of the port gets the timeout (LE16 ms).
-        std::array<std::uint8_t, std::size_t{2} * (kMaxMotorId + 1)> payload{};
-        const auto ms = static_cast<std::uint16_t>(request.value);
-        const auto slots = static_cast<std::size_t>(highest_id_);
-        for (std::size_t slot = 0; slot < slots; ++slot) {
-          payload[2 * slot] = static_cast<std::uint8_t>(ms & 0xFF);
-          payload[2 * slot + 1] = static_cast<std::uint8_t>(ms >> 8);
-        }
-        return send_packet(BoardCommand::kTimeout, std::span(payload).first(2 * slots));
+        std::array<std::uint8_t, kMaxPacket> packet{};
+        return write_packet(std::span(packet).first(
+            encode_board_timeout(static_cast<std::uint16_t>(request.value), highest_id_, packet)));
       }
       case SystemRequest::Kind::kInfo:
         // The board answers firmware versions only; hardware version and model are not asked.
@@ -115,6 +110,11 @@ class BoardBus final : public MotorBus {
       deliver_versions(frame, sink);
       return;
     }
+    if (frame.command == BoardCommand::kResetZero || frame.command == BoardCommand::kSave ||
+        frame.command == BoardCommand::kReloadConfig) {
+      deliver_acknowledgements(frame, sink);
+      return;
+    }
     std::array<BoardMotorState, driver::kMaxJoints> states;
     const std::size_t count = decode_board_states(frame.command, frame.bytes(), scaling_, states);
     for (std::size_t i = 0; i < count; ++i) {
@@ -127,6 +127,18 @@ class BoardBus final : public MotorBus {
       reply.state.position_rad = states[i].position_rad;
       reply.state.velocity_rad_s = states[i].velocity_rad_s;
       reply.state.torque_nm = states[i].torque_nm;
+      sink.on_reply(reply);
+    }
+  }
+
+  /// The board answers set-zero, save and reload with the ids of the motors that did it.
+  void deliver_acknowledgements(const BoardFrame& frame, ReplySink& sink) noexcept {
+    std::array<CommandResult, kMaxBoardPayload> results;
+    const std::size_t count = decode_board_acknowledgements(frame.command, frame.bytes(), results);
+    for (std::size_t i = 0; i < count; ++i) {
+      Reply reply;
+      reply.kind = Reply::Kind::kResult;
+      reply.result = results[i];
       sink.on_reply(reply);
     }
   }
@@ -144,15 +156,19 @@ class BoardBus final : public MotorBus {
 
   /// Admin commands and state requests name their motor in one byte; 0x7F is every motor.
   BusIo send_admin(BoardCommand command) noexcept {
-    const std::array<std::uint8_t, 1> all{static_cast<std::uint8_t>(kBroadcastId)};
-    return send_packet(command, all);
+    std::array<std::uint8_t, kMaxPacket> packet{};
+    return write_packet(std::span(packet).first(encode_board_admin(command, kBroadcastId, packet)));
   }
 
   BusIo send_packet(BoardCommand command, std::span<const std::uint8_t> payload) noexcept {
     std::array<std::uint8_t, kMaxPacket> packet{};
-    const std::size_t size = encode_board_frame(command, payload, packet);
+    return write_packet(std::span(packet).first(encode_board_frame(command, payload, packet)));
+  }
+
+  BusIo write_packet(std::span<const std::uint8_t> packet) noexcept {
+    const std::size_t size = packet.size();
     std::size_t written = 0;
-    switch (port_.write(std::span(packet).first(size), written)) {
+    switch (port_.write(packet, written)) {
       case transport::SerialIo::kClosed:
         return BusIo::kClosed;
       case transport::SerialIo::kNone:
@@ -172,6 +188,7 @@ class BoardBus final : public MotorBus {
   transport::SerialPort port_;
   ScalingById scaling_;
   int highest_id_;
+  BoardSlotBuffer slots_;
   BoardFrameSplitter splitter_;
   std::uint64_t counted_crc_errors_ = 0;
   std::uint64_t counted_skipped_bytes_ = 0;

@@ -19,8 +19,8 @@ constexpr int kMaxFramesPerReceive = 512;  // bounds one tick's work even on a f
 
 class CanFdBus final : public MotorBus {
  public:
-  CanFdBus(const transport::CanLinkConfig& config, const ScalingById& scaling, Width width)
-      : transport_(transport::make_can_transport(config)), scaling_(scaling), width_(width) {}
+  CanFdBus(const transport::CanLinkConfig& config, const ScalingById& scaling, Width width, int highest_id)
+      : transport_(transport::make_can_transport(config)), scaling_(scaling), width_(width), highest_id_(highest_id) {}
 
   Result<void> open() override { return transport_->open(); }
   void close() noexcept override { transport_->close(); }
@@ -88,12 +88,12 @@ class CanFdBus final : public MotorBus {
     }
   }
 
-  /// Block frames when the slots fit them, one frame per motor otherwise (ids beyond the block
-  /// range, modes without a block form).
+  /// Block frames with every motor of the bus (1…highest id) when the mode has a block form, one
+  /// frame per motor otherwise.
   BusIo send_slots(std::span<const BlockSlot> slots, Query query) noexcept {
     if (slots.empty()) return BusIo::kOk;
     std::array<transport::CanMessage, kMaxBlockFrames> frames;
-    std::size_t count = encode_block(slots, query, scaling_, frames);
+    const std::size_t count = encode_block(slots, query, scaling_, highest_id_, frames);
     BusIo status = BusIo::kOk;
     if (count > 0) {
       for (std::size_t f = 0; f < count; ++f) status = worst(status, send(frames[f]));
@@ -111,13 +111,14 @@ class CanFdBus final : public MotorBus {
   std::unique_ptr<transport::CanTransport> transport_;
   ScalingById scaling_;
   Width width_;
+  int highest_id_;
 };
 
 }  // namespace
 
 std::unique_ptr<MotorBus> make_can_fd_bus(const transport::CanLinkConfig& config, const ScalingById& scaling,
-                                          Width width) {
-  return std::make_unique<CanFdBus>(config, scaling, width);
+                                          Width width, int highest_id) {
+  return std::make_unique<CanFdBus>(config, scaling, width, highest_id);
 }
 
 }  // namespace robotd::hightorque

@@ -114,7 +114,11 @@ class HighTorqueDriver final : public driver::Driver, private ReplySink {
                                   const char* what);
   void drain_buses() noexcept;
   void send_to_motors(std::span<const std::size_t> motors, SystemRequest::Kind kind, int value = 0);
-  Result<void> await_results(std::span<const std::size_t> motors, const char* what);
+  /// Sends `kind` to `motors` until every one acknowledged it (a kResult reply), again every
+  /// 20 ms to those that did not, for at most reply_timeout_ms.
+  Result<void> acknowledged(std::span<const std::size_t> motors, SystemRequest::Kind kind, const char* what);
+  void resend_to_pending(std::span<const std::size_t> motors, const std::vector<bool>& pending,
+                         SystemRequest::Kind kind);
   Result<void> check_zeroable(std::span<const int> joints) const;
   Result<void> zero(std::span<const int> joints);
 

@@ -38,7 +38,7 @@ std::unique_ptr<MotorBus> make_motor_bus(const HighTorqueParams& params, std::si
   }
   const BusParams& config = params.buses[bus];
   if (config.kind == BusParams::Kind::kBoard) return make_board_bus(config.serial, scaling, highest_id);
-  return make_can_fd_bus(config.can, scaling, params.width);
+  return make_can_fd_bus(config.can, scaling, params.width, highest_id);
 }
 
 }  // namespace robotd::hightorque

@@ -16,9 +16,10 @@ using ScalingById = std::array<MotorScaling, kBroadcastId + 1>;
 /// The CAN-FD frame for a system request.
 transport::CanMessage system_frame(const SystemRequest& request, Width width, const MotorScaling& scaling) noexcept;
 
+/// `highest_id`: the highest motor id on the bus (block frames and board slot payloads carry
+/// every motor from id 1 to it, as the vendor's SDKs do).
 std::unique_ptr<MotorBus> make_can_fd_bus(const transport::CanLinkConfig& config, const ScalingById& scaling,
-                                          Width width);
-/// `highest_id`: the highest motor id on the port (slot payloads run from id 1 to it).
+                                          Width width, int highest_id);
 std::unique_ptr<MotorBus> make_board_bus(const transport::SerialConfig& config, const ScalingById& scaling,
                                          int highest_id);
 

@@ -1,7 +1,9 @@
 // reset_zero as on the PI Plus: with the loop paused and no session, the motors go to zero
 // torque, take their present angle as zero (written to flash), and zeroing succeeded when every
 // one reads within 0.1 rad of it. The USB board zeroes a whole port at once, so there a port is
-// zeroed whole or not at all.
+// zeroed whole or not at all. Every motor must acknowledge set-zero and save-to-flash (the board
+// answers with the ids that did); the request goes out again every 20 ms until all did, as the
+// board SDK's canport.cc does.
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -14,6 +16,7 @@ namespace robotd::hightorque {
 namespace {
 
 constexpr double kZeroTolerance_rad = 0.1;
+constexpr auto kResendInterval = std::chrono::milliseconds(20);  // canport.cc's retry period
 
 }  // namespace
 
@@ -67,11 +70,9 @@ Result<void> HighTorqueDriver::zero(std::span<const int> joints) {
   } while (std::chrono::steady_clock::now() < settled);
 
   replies_.clear();
-  send_to_motors(motors, SystemRequest::Kind::kSetZero);
-  if (auto done = await_results(motors, "set zero"); !done) return done;
+  if (auto done = acknowledged(motors, SystemRequest::Kind::kSetZero, "set zero"); !done) return done;
   if (params_.zero_save_to_flash) {
-    send_to_motors(motors, SystemRequest::Kind::kSaveToFlash);
-    if (auto done = await_results(motors, "save to flash"); !done) return done;
+    if (auto done = acknowledged(motors, SystemRequest::Kind::kSaveToFlash, "save to flash"); !done) return done;
   }
 
   auto answered = await_motor_states(motors, std::chrono::milliseconds(params_.reply_timeout_ms), "after zeroing");
@@ -88,19 +89,38 @@ Result<void> HighTorqueDriver::zero(std::span<const int> joints) {
   return {};
 }
 
-Result<void> HighTorqueDriver::await_results(std::span<const std::size_t> motors, const char* what) {
-  // The board acknowledges nothing per motor: a port's admin packet is trusted, and the
-  // position check afterwards is what counts.
+void HighTorqueDriver::resend_to_pending(std::span<const std::size_t> motors, const std::vector<bool>& pending,
+                                         SystemRequest::Kind kind) {
+  // A board's admin packet covers its whole port: once per board bus is enough.
+  std::vector<bool> board_sent(params_.buses.size(), false);
+  std::vector<std::size_t> again;
+  for (const std::size_t m : motors) {
+    if (!pending[m]) continue;
+    const std::size_t bus = params_.motors[m].bus;
+    if (params_.buses[bus].kind == BusParams::Kind::kBoard) {
+      if (board_sent[bus]) continue;
+      board_sent[bus] = true;
+    }
+    again.push_back(m);
+  }
+  send_to_motors(again, kind);
+}
+
+Result<void> HighTorqueDriver::acknowledged(std::span<const std::size_t> motors, SystemRequest::Kind kind,
+                                            const char* what) {
   std::vector<bool> pending(params_.motors.size(), false);
   std::size_t waiting = 0;
   for (const std::size_t m : motors) {
-    if (params_.buses[params_.motors[m].bus].kind == BusParams::Kind::kCanFd) {
-      pending[m] = true;
-      ++waiting;
-    }
+    pending[m] = true;
+    ++waiting;
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
+  auto next_send = std::chrono::steady_clock::now();
   while (waiting > 0 && std::chrono::steady_clock::now() < deadline) {
+    if (std::chrono::steady_clock::now() >= next_send) {
+      resend_to_pending(motors, pending, kind);
+      next_send += kResendInterval;
+    }
     if (!abort_.sleep_for(std::chrono::milliseconds(1))) {
       return driver::aborted_error(std::string("waiting for the answers to ") + what);
     }

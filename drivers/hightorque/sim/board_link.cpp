@@ -128,7 +128,7 @@ void Bus::serve_board(const BoardFrame& frame, std::int64_t now_ns) {
       return;
     }
     case BoardCommand::kSetMotorCount: {
-      // [result, count, board major, minor, patch]: result 0 when the count is 1 … 126.
+      // [result, count, board major, minor, patch]: result 0 when the count is 1 … 30.
       const int count = payload.empty() ? 0 : payload[0];
       const bool valid = count >= kMinMotorId && count <= kMaxMotorId;
       const std::array<std::uint8_t, 5> reply{

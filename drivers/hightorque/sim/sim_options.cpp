@@ -21,7 +21,7 @@ std::optional<int> whole_number(std::string_view text) {
 }  // namespace
 
 Result<std::vector<int>> parse_motor_ids(std::string_view text) {
-  const std::string expected = "motor ids such as 1-6, 1,2,5 or 1-4,7 (each 1 … 126, no repeats)";
+  const std::string expected = "motor ids such as 1-6, 1,2,5 or 1-4,7 (each 1 … 30, no repeats)";
   if (text.empty()) return invalid("no motor ids: expected " + expected);
   std::vector<int> ids;
   std::string_view rest = text;
@@ -49,7 +49,7 @@ Result<BusSpec> parse_bus_spec(BusSpec::Kind kind, std::string_view text, std::s
   const std::size_t colon = text.rfind(':');
   if (colon == std::string_view::npos || colon == 0) {
     return invalid(std::string(option) + " '" + std::string(text) +
-                   "': expected PATH:IDS, e.g. /tmp/legs.sock:1-6 (motor ids 1 … 126)");
+                   "': expected PATH:IDS, e.g. /tmp/legs.sock:1-6 (motor ids 1 … 30)");
   }
   auto ids = parse_motor_ids(text.substr(colon + 1));
   if (!ids) return invalid(std::string(option) + " '" + std::string(text) + "': " + ids.error().message);

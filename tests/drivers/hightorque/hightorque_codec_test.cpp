@@ -103,16 +103,23 @@ MotorCommand stopped(Mode mode) {
   return command;
 }
 
+// Decoded values carry the vendor's float precision (its parsers compute in float).
+#define EXPECT_AS_FLOAT_EQ(actual, expected) EXPECT_FLOAT_EQ(static_cast<float>(actual), static_cast<float>(expected))
+
 std::vector<MotorRequest> requests_of(const CanMessage& message, const MotorScaling& scaling = kCanFd) {
   std::vector<MotorRequest> out(64);
   out.resize(decode_request(message, scaling, out));
   return out;
 }
 
+/// Block frames for a bus of motors 1…motor_count (0: up to the highest motor of `slots`).
 std::vector<CanMessage> blocks_of(const std::vector<BlockSlot>& slots, Query query = Query::kState,
-                                  std::span<const MotorScaling> scaling = kCanFdById) {
+                                  std::span<const MotorScaling> scaling = kCanFdById, int motor_count = 0) {
+  if (motor_count == 0) {
+    for (const BlockSlot& slot : slots) motor_count = std::max(motor_count, slot.motor);
+  }
   std::vector<CanMessage> out(8);
-  out.resize(encode_block(slots, query, scaling, out));
+  out.resize(encode_block(slots, query, scaling, motor_count, out));
   return out;
 }
 
@@ -277,7 +284,7 @@ TEST(BlockFrames, MitSixMotorsFillBlock0x98) {
   EXPECT_EQ(wire_of(frames[0]), (Wire{0x18098, expected}));
 }
 
-TEST(BlockFrames, GapsAreUnsetSlotsUpToTheHighestMotor) {
+TEST(BlockFrames, MotorsWithoutACommandGetTheNoValueMarker) {
   const std::vector<CanMessage> frames =
       blocks_of({{4, mit(rev(0.5), 0, 0, gain(10), gain(1))}, {2, mit(rev(1.0), 0, 0, gain(20), gain(2))}});
   ASSERT_EQ(frames.size(), 1U);
@@ -291,12 +298,22 @@ TEST(BlockFrames, GapsAreUnsetSlotsUpToTheHighestMotor) {
   EXPECT_EQ(wire_of(frames[0]), (Wire{0x18098, expected}));
 }
 
-TEST(BlockFrames, MotorsSevenOnGoToTheNextBlocksAndEmptyBlocksAreNotSent) {
-  const std::vector<CanMessage> frames = blocks_of({{7, mit(0, 0, 0, 0, 0)}, {13, mit(0, 0, 0, 0, 0)}});
-  ASSERT_EQ(frames.size(), 2U);
-  EXPECT_EQ(frames[0].id, 0x18099U);
-  EXPECT_EQ(frames[1].id, 0x1809AU);
-  EXPECT_EQ(frames[0].length, 12U);  // one slot + query → 11 → 12
+TEST(BlockFrames, EveryMotorOfTheBusIsSentEvenInFramesWithoutACommand) {
+  // As the vendor's motor_many.c: a bus of 13 motors is 0x98 (1–6), 0x99 (7–12), 0x9A (13).
+  const std::vector<CanMessage> frames = blocks_of({{7, mit(0, 0, 0, 0, 0)}}, Query::kState, kCanFdById, 13);
+  ASSERT_EQ(frames.size(), 3U);
+  EXPECT_EQ(frames[0].id, 0x18098U);
+  EXPECT_EQ(frames[1].id, 0x18099U);
+  EXPECT_EQ(frames[2].id, 0x1809AU);
+  EXPECT_EQ(frames[0].length, 64U);
+  EXPECT_EQ(frames[2].length, 12U);  // one slot + query → 11 → 12
+  for (std::size_t at = 0; at < 60; at += 2) {
+    EXPECT_EQ(frames[0].data[at + 1], 0x80) << "motor 1–6 byte " << at;  // 0x8000: no value
+    if (at >= 10) {
+      EXPECT_EQ(frames[1].data[at + 1], 0x80) << "motor 8–12 byte " << at;
+    }
+  }
+  EXPECT_EQ(frames[1].data[1], 0x00);  // motor 7: position 0
 }
 
 TEST(BlockFrames, VelocityThreeMotorsNeedNoPadding) {
@@ -310,6 +327,11 @@ TEST(BlockFrames, PaddingReadsAsUnsetSlotsAndTheQueryIsTheLastByte) {
   // 8 data bytes + query = 9 → 12: bytes 8–9 are a fifth (unset) slot, byte 10 padding.
   EXPECT_EQ(wire_of(blocks_of(slots, Query::kCompact)[0]),
             (Wire{0x18081, {0, 0, 0, 0, 0, 0, 0, 0, 0x00, 0x80, 0x00, 0x0E}}));
+}
+
+TEST(BlockFrames, RejectMotorsAboveTheBusMotorCount) {
+  EXPECT_TRUE(blocks_of({{5, velocity(0)}}, Query::kState, kCanFdById, 4).empty());
+  EXPECT_TRUE(blocks_of({{1, velocity(0)}}, Query::kState, kCanFdById, 31).empty());
 }
 
 TEST(BlockFrames, VelocityAccelerationIsFourBytesPerMotor) {
@@ -367,7 +389,7 @@ TEST(BlockFrames, RejectMotorsOutsideOneToThirty) {
 TEST(BlockFrames, RejectOutputTooSmall) {
   const std::vector<BlockSlot> slots{{1, mit(0, 0, 0, 0, 0)}, {7, mit(0, 0, 0, 0, 0)}};
   std::array<CanMessage, 1> out{};
-  EXPECT_EQ(encode_block(slots, Query::kState, kCanFdById, out), 0U);
+  EXPECT_EQ(encode_block(slots, Query::kState, kCanFdById, 7, out), 0U);
 }
 
 TEST(BlockFrames, EachMotorUsesItsOwnScaling) {
@@ -392,7 +414,20 @@ TEST(SystemCommands, ConfigurationOperations) {
   EXPECT_EQ(wire_of(encode_soft_reboot(1)), (Wire{0x18001, {0x03, 0x03, 0x01}}));
   EXPECT_EQ(wire_of(encode_save_to_flash(1)), (Wire{0x18001, {0x03, 0x03, 0x02}}));
   EXPECT_EQ(wire_of(encode_set_zero(1)), (Wire{0x18001, {0x03, 0x03, 0x03}}));
-  EXPECT_EQ(wire_of(encode_change_id(1, 2)), (Wire{0x18001, {0x03, 0x03, 0x04, 0x02}}));
+  EXPECT_EQ(wire_of(encode_change_id(1, 2).value()), (Wire{0x18001, {0x03, 0x03, 0x04, 0x02}}));
+}
+
+TEST(SystemCommands, ChangeIdRefusesIdsOutsideOneToThirty) {
+  // The vendor's hightorque_id() sends nothing for these; 200 used to go out as 72 (masked).
+  for (const auto& [motor, new_id] :
+       {std::pair{1, 200}, std::pair{1, 127}, std::pair{1, 31}, std::pair{1, 0}, std::pair{31, 2}, std::pair{0, 2}}) {
+    const Result<CanMessage> frame = encode_change_id(motor, new_id);
+    ASSERT_FALSE(frame) << motor << " → " << new_id;
+    EXPECT_EQ(frame.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(frame.error().message.find("outside the motor ids 1…30"), std::string::npos) << frame.error().message;
+  }
+  EXPECT_NE(encode_change_id(1, 200).error().message.find("new id 200"), std::string::npos);
+  EXPECT_TRUE(encode_change_id(30, 1));
 }
 
 TEST(SystemCommands, CommandTimeoutIs05ThenMillisecondsLittleEndian) {
@@ -422,9 +457,9 @@ std::optional<Reply> reply_of(std::uint32_t id, const Bytes& bytes, int max_moto
 
 /// A reply's position, velocity (in revolutions) and torque.
 void expect_motion(const MotorState& state, double position_rev, double velocity_rev, double torque_nm) {
-  EXPECT_DOUBLE_EQ(state.position_rad, rev(position_rev));
-  EXPECT_DOUBLE_EQ(state.velocity_rad_s, rev(velocity_rev));
-  EXPECT_DOUBLE_EQ(state.torque_nm, torque_nm);
+  EXPECT_AS_FLOAT_EQ(state.position_rad, rev(position_rev));
+  EXPECT_AS_FLOAT_EQ(state.velocity_rad_s, rev(velocity_rev));
+  EXPECT_AS_FLOAT_EQ(state.torque_nm, torque_nm);
 }
 
 TEST(Replies, StateInt16) {
@@ -461,15 +496,27 @@ TEST(Replies, StateFloat) {
   expect_motion(reply->state, 0.5, 1.0, 2.0);
 }
 
+TEST(Replies, TheNoValueMarkerReadsAsASaturatedNumberLikeTheVendor) {
+  // motor.c reads 0x8000 as −32768 (a saturated reading), not as "no value".
+  const std::optional<Reply> reply = reply_of(0x10100, {0x0B, 0x21, 0x00, 0x00, 0x80, 0x00, 0x80, 0x00, 0x80});
+  ASSERT_TRUE(reply.has_value());
+  expect_motion(reply->state, -3.2768, -8.192, -327.68);
+}
+
+TEST(Replies, MotorsAboveThirtyAreNotRead) {
+  EXPECT_TRUE(reply_of(0x11E00, {0x0B, 0x21, 0x00, 0, 0, 0, 0, 0, 0}).has_value());
+  EXPECT_FALSE(reply_of(0x11F00, {0x0B, 0x21, 0x00, 0, 0, 0, 0, 0, 0}).has_value());
+}
+
 TEST(Replies, StateTemperatureInt16IsTenthsOfDegrees) {
   const std::optional<Reply> reply =
       reply_of(0x10100, {0x0C, 0x1C, 0x00, 0xFA, 0x00, 0xC8, 0x00, 0x90, 0x01, 0x03, 0x00});
   ASSERT_TRUE(reply.has_value());
   EXPECT_EQ(reply->state.query, Query::kStateTemperature);
   ASSERT_TRUE(reply->state.temperature_c.has_value());
-  EXPECT_DOUBLE_EQ(*reply->state.temperature_c, 25.0);
-  EXPECT_DOUBLE_EQ(reply->state.position_rad, rev(0.02));
-  EXPECT_DOUBLE_EQ(reply->state.torque_nm, 0.03);
+  EXPECT_AS_FLOAT_EQ(*reply->state.temperature_c, 25.0);
+  EXPECT_AS_FLOAT_EQ(reply->state.position_rad, rev(0.02));
+  EXPECT_AS_FLOAT_EQ(reply->state.torque_nm, 0.03);
 }
 
 TEST(Replies, StateTemperatureInt32IsThousandthsOfDegrees) {
@@ -478,7 +525,7 @@ TEST(Replies, StateTemperatureInt32IsThousandthsOfDegrees) {
   const std::optional<Reply> reply = reply_of(0x20100, bytes);
   ASSERT_TRUE(reply.has_value());
   ASSERT_TRUE(reply->state.temperature_c.has_value());
-  EXPECT_DOUBLE_EQ(*reply->state.temperature_c, 25.5);
+  EXPECT_AS_FLOAT_EQ(*reply->state.temperature_c, 25.5);
 }
 
 TEST(Replies, CompactHasNoMode) {
@@ -602,7 +649,7 @@ TEST(MotorReplies, EveryStateReplyRoundTripsAtEveryWidth) {
         continue;
       }
       if (query == Query::kStateTemperature) {
-        EXPECT_DOUBLE_EQ(reply->state.temperature_c.value_or(0), 41.5);
+        EXPECT_AS_FLOAT_EQ(reply->state.temperature_c.value_or(0), 41.5);
       }
       expect_motion(reply->state, -1.25, 0.5, -2.5);
     }
@@ -676,28 +723,28 @@ TEST(Requests, EveryModeRoundTripsAtEveryWidth) {
       EXPECT_EQ(request.has_velocity, moves && mode != Mode::kPosition);
       EXPECT_EQ(request.has_kp, mode == Mode::kMit);
       if (positions) {
-        EXPECT_DOUBLE_EQ(request.command.position_rad, rev(0.25));
+        EXPECT_AS_FLOAT_EQ(request.command.position_rad, rev(0.25));
       }
       if (request.has_velocity) {
-        EXPECT_DOUBLE_EQ(request.command.velocity_rad_s, rev(-0.5));
+        EXPECT_AS_FLOAT_EQ(request.command.velocity_rad_s, rev(-0.5));
       }
       if (request.has_torque) {
-        EXPECT_DOUBLE_EQ(request.command.torque_nm, 1.5);
+        EXPECT_AS_FLOAT_EQ(request.command.torque_nm, 1.5);
       }
       if (request.has_kp) {
-        EXPECT_NEAR(request.command.kp, gain(20), 1e-12);
+        EXPECT_AS_FLOAT_EQ(request.command.kp, gain(20));
       }
       if (request.has_kd) {
-        EXPECT_NEAR(request.command.kd, gain(2), 1e-12);
+        EXPECT_AS_FLOAT_EQ(request.command.kd, gain(2));
       }
       if (mode == Mode::kVoltage) {
-        EXPECT_DOUBLE_EQ(request.command.voltage_q_v, 1.5);
+        EXPECT_AS_FLOAT_EQ(request.command.voltage_q_v, 1.5);
       }
       if (mode == Mode::kCurrent) {
-        EXPECT_DOUBLE_EQ(request.command.current_q_a, -2.5);
+        EXPECT_AS_FLOAT_EQ(request.command.current_q_a, -2.5);
       }
       if (mode == Mode::kVelocityAcceleration) {
-        EXPECT_DOUBLE_EQ(request.command.acceleration_rad_s2, rev(2.0));
+        EXPECT_AS_FLOAT_EQ(request.command.acceleration_rad_s2, rev(2.0));
       }
     }
   }
@@ -721,7 +768,7 @@ TEST(Requests, SystemCommandsRoundTrip) {
   EXPECT_EQ(single(encode_soft_reboot(1)).kind, MotorRequest::Kind::kSoftReboot);
   EXPECT_EQ(single(encode_save_to_flash(1)).kind, MotorRequest::Kind::kSaveToFlash);
   EXPECT_EQ(single(encode_set_zero(1)).kind, MotorRequest::Kind::kSetZero);
-  const MotorRequest change = single(encode_change_id(1, 9));
+  const MotorRequest change = single(encode_change_id(1, 9).value());
   EXPECT_EQ(change.kind, MotorRequest::Kind::kChangeId);
   EXPECT_EQ(change.new_id, 9);
   const MotorRequest timeout = single(encode_command_timeout(1, 500));
@@ -749,10 +796,10 @@ TEST(Requests, BlockYieldsOneRequestPerCommandedMotor) {
   EXPECT_EQ(requests[1].command.mode, Mode::kMit);
   EXPECT_EQ(requests[1].query, Query::kCompact);
   EXPECT_EQ(requests[1].width, Width::kInt16);
-  EXPECT_DOUBLE_EQ(requests[1].command.position_rad, rev(0.5));
-  EXPECT_DOUBLE_EQ(requests[1].command.velocity_rad_s, rev(0.25));
-  EXPECT_DOUBLE_EQ(requests[1].command.torque_nm, -1.0);
-  EXPECT_NEAR(requests[1].command.kd, gain(1), 1e-12);
+  EXPECT_AS_FLOAT_EQ(requests[1].command.position_rad, rev(0.5));
+  EXPECT_AS_FLOAT_EQ(requests[1].command.velocity_rad_s, rev(0.25));
+  EXPECT_AS_FLOAT_EQ(requests[1].command.torque_nm, -1.0);
+  EXPECT_AS_FLOAT_EQ(requests[1].command.kd, gain(1));
 }
 
 TEST(Requests, BlockInLaterFramesNamesMotorsFromTheFrameIndex) {
@@ -760,8 +807,8 @@ TEST(Requests, BlockInLaterFramesNamesMotorsFromTheFrameIndex) {
   ASSERT_EQ(frames.size(), 1U);
   EXPECT_EQ(frames[0].id, 0x18081U);  // 2-byte modes carry 30 motors in one frame
   const std::vector<CanMessage> mit_frames = blocks_of({{29, mit(0, 0, 0, 0, 0)}});
-  ASSERT_EQ(mit_frames.size(), 1U);
-  const std::vector<MotorRequest> requests = requests_of(mit_frames[0]);
+  ASSERT_EQ(mit_frames.size(), 5U);  // motors 1–29, six a frame
+  const std::vector<MotorRequest> requests = requests_of(mit_frames[4]);
   ASSERT_EQ(requests.size(), 1U);
   EXPECT_EQ(requests[0].motor, 29);
 }
@@ -774,7 +821,7 @@ TEST(Requests, BlockSlotWithSomeUnsetFieldsFlagsThem) {
   EXPECT_FALSE(requests[0].has_position);
   EXPECT_TRUE(requests[0].has_velocity);
   EXPECT_TRUE(requests[0].has_torque);
-  EXPECT_DOUBLE_EQ(requests[0].command.torque_nm, 1.0);
+  EXPECT_AS_FLOAT_EQ(requests[0].command.torque_nm, 1.0);
 }
 
 TEST(Requests, StopBlockFlagsOnlyTheNamedMotors) {
@@ -991,10 +1038,63 @@ TEST(BoardSplitter, EmptyPayloadIsAPacket) {
 const MotorScaling k5047{.torque_per_unit = 0.004938, .torque_offset_nm = -0.03313, .gain_factor = 0.4938};
 const std::array<MotorScaling, 5> kBoardScaling{MotorScaling{}, k5047, k5047, k5047, k5047};  // ids 1–4
 
+/// One update of a fresh port whose highest motor id is the highest of `slots`.
 Bytes board_slots(BoardCommand command, const std::vector<BlockSlot>& slots) {
-  Bytes out(256);
-  out.resize(encode_board_slots(command, slots, kBoardScaling, out));
-  return out;
+  int highest = 0;
+  for (const BlockSlot& slot : slots) highest = std::max(highest, slot.motor);
+  BoardSlotBuffer buffer(highest);
+  const std::span<const std::uint8_t> payload = buffer.update(command, slots, kBoardScaling);
+  return {payload.begin(), payload.end()};
+}
+
+TEST(BoardSlots, KpTenOnA5047_36IsAbout1272) {
+  // The figure: 10 / 0.4938 × 10 × 2π = 1272.4 (with the old gain_factor 0.004938: 32700).
+  const Bytes slots = board_slots(BoardCommand::kPositionVelocityTorqueKpKd, {{1, mit(0, 0, 0, 10.0, 0.7)}});
+  ASSERT_EQ(slots.size(), 10U);
+  EXPECT_EQ(slots[6] | (slots[7] << 8), 1272);
+  EXPECT_EQ(slots[8] | (slots[9] << 8), 89);  // 0.7 / 0.4938 × 10 × 2π = 89.07
+}
+
+TEST(BoardSlots, MotorsNotCommandedKeepTheirLastValuesUntilTheModeChanges) {
+  BoardSlotBuffer buffer(3);
+  const std::vector<BlockSlot> all{
+      {1, mit(0, 0, 0, 1.0, 0.1)}, {2, mit(0, 0, 0, 2.0, 0.2)}, {3, mit(0, 0, 0, 3.0, 0.3)}};
+  const std::span<const std::uint8_t> first =
+      buffer.update(BoardCommand::kPositionVelocityTorqueKpKd, all, kBoardScaling);
+  const Bytes before(first.begin(), first.end());
+  const std::vector<BlockSlot> only_two{{2, mit(rev(0.25), 0, 0, 5.0, 0.5)}};
+  const std::span<const std::uint8_t> second =
+      buffer.update(BoardCommand::kPositionVelocityTorqueKpKd, only_two, kBoardScaling);
+  ASSERT_EQ(second.size(), 30U);
+  EXPECT_EQ(Bytes(second.begin(), second.begin() + 10), Bytes(before.begin(), before.begin() + 10));  // motor 1
+  EXPECT_EQ(Bytes(second.begin() + 20, second.end()), Bytes(before.begin() + 20, before.end()));      // motor 3
+  EXPECT_EQ(second[10] | (second[11] << 8), 2500);                                                    // motor 2
+  // Another command resets every slot: position unset, the rest 0.
+  const std::span<const std::uint8_t> torque = buffer.update(BoardCommand::kTorque, {}, kBoardScaling);
+  EXPECT_EQ(Bytes(torque.begin(), torque.end()), Bytes(6, 0));
+  const std::span<const std::uint8_t> back =
+      buffer.update(BoardCommand::kPositionVelocityTorqueKpKd, {}, kBoardScaling);
+  EXPECT_EQ(back[0] | (back[1] << 8), 0x8000);
+  buffer.reset();
+  const std::vector<BlockSlot> beyond{{4, mit(0, 0, 0, 0, 0)}};  // the port's motors are 1–3
+  EXPECT_TRUE(buffer.update(BoardCommand::kPositionVelocityTorqueKpKd, beyond, kBoardScaling).empty());
+}
+
+TEST(BoardSlots, The0x93FormHasTheSameSlotsAs0xB0) {
+  const std::vector<BlockSlot> slots{{2, mit(rev(0.25), rev(0.5), 1.0, 1.0, 0.1)}};
+  EXPECT_EQ(board_slots(BoardCommand::kPositionVelocityTorqueKpKdV1, slots),
+            board_slots(BoardCommand::kPositionVelocityTorqueKpKd, slots));
+}
+
+TEST(BoardPackets, AdminAndTimeoutPacketsAsTheSdkSendsThem) {
+  // Recorded from the SDK's canport.cc (tests/conformance/hightorque/board_admin_packets.jsonl).
+  Bytes packet(64);
+  packet.resize(encode_board_admin(BoardCommand::kStop, kBroadcastId, packet));
+  EXPECT_EQ(packet, (Bytes{0xF7, 0x03, 0x01, 0x00, 0xF2, 0xF7, 0x84, 0x7F}));
+  packet.resize(64);
+  packet.resize(encode_board_timeout(200, 3, packet));
+  EXPECT_EQ(packet, (Bytes{0xF7, 0x85, 0x06, 0x00, 0x2F, 0x30, 0xF4, 0xC8, 0x00, 0xC8, 0x00, 0xC8, 0x00}));
+  EXPECT_EQ(encode_board_timeout(200, 31, packet), 0U);
 }
 
 TEST(BoardSlots, MitV2SlotsInIdOrderWithUnsetPositions) {
@@ -1036,8 +1136,8 @@ TEST(BoardSlots, RoundTripThroughTheBoardSide) {
   const MotorRequest& third = out[2];
   EXPECT_EQ(third.motor, 3);
   EXPECT_EQ(third.command.mode, Mode::kMit);
-  EXPECT_DOUBLE_EQ(third.command.position_rad, rev(0.25));
-  EXPECT_DOUBLE_EQ(third.command.velocity_rad_s, rev(-0.5));
+  EXPECT_AS_FLOAT_EQ(third.command.position_rad, rev(0.25));
+  EXPECT_AS_FLOAT_EQ(third.command.velocity_rad_s, rev(-0.5));
   EXPECT_NEAR(third.command.torque_nm, 1.0, 0.004938);  // within one LSB (truncated)
   EXPECT_NEAR(third.command.kp, 1.0, 0.4938 / kTwoPi / 10);
   EXPECT_NEAR(third.command.kd, 0.1, 0.4938 / kTwoPi / 10);
@@ -1050,7 +1150,7 @@ TEST(BoardStates, State2RecordRoundTrips) {
                       .fault = 0x15,
                       .position_rad = rev(0.25),
                       .velocity_rad_s = rev(-0.1),
-                      .torque_nm = 0.998912},
+                      .torque_nm = 0.999},
       BoardMotorState{.motor = 4, .mode = 0x01, .fault = 0, .position_rad = 0, .velocity_rad_s = 0, .torque_nm = 0}};
   Bytes payload(64);
   payload.resize(encode_board_states(BoardCommand::kMotorState2, states, kBoardScaling, payload));
@@ -1061,9 +1161,9 @@ TEST(BoardStates, State2RecordRoundTrips) {
   EXPECT_EQ(out[0].motor, 2);
   EXPECT_EQ(out[0].mode, 0x21);
   EXPECT_EQ(out[0].fault, 0x15);
-  EXPECT_DOUBLE_EQ(out[0].position_rad, rev(0.25));
-  EXPECT_DOUBLE_EQ(out[0].velocity_rad_s, rev(-0.1));
-  EXPECT_NEAR(out[0].torque_nm, 0.998912, 1e-9);
+  EXPECT_AS_FLOAT_EQ(out[0].position_rad, rev(0.25));
+  EXPECT_AS_FLOAT_EQ(out[0].velocity_rad_s, rev(-0.1));
+  EXPECT_NEAR(out[0].torque_nm, 0.998912, 1e-6);
   EXPECT_EQ(out[1].motor, 4);
 }
 
@@ -1072,8 +1172,8 @@ TEST(BoardStates, ShortRecordsHaveNoModeOrFault) {
   std::array<BoardMotorState, 2> out{};
   ASSERT_EQ(decode_board_states(BoardCommand::kMotorState, payload, kBoardScaling, out), 1U);
   EXPECT_EQ(out[0].mode, 0);
-  EXPECT_DOUBLE_EQ(out[0].velocity_rad_s, rev(0.1));
-  EXPECT_NEAR(out[0].torque_nm, 209 * 0.004938 - 0.03313, 1e-12);
+  EXPECT_AS_FLOAT_EQ(out[0].velocity_rad_s, rev(0.1));
+  EXPECT_NEAR(out[0].torque_nm, 209 * 0.004938 - 0.03313, 1e-6);
 }
 
 TEST(BoardStates, StopAtATruncatedRecordAndSkipUnknownMotors) {
@@ -1152,7 +1252,7 @@ TEST(Robustness, HotPathDoesNotAllocate) {
   BoardFrame frame;
   const std::size_t before = testing::allocations_on_this_thread();
   const CanMessage command = encode_command(1, mit(1, 2, 3, 4, 5), Width::kInt32, Query::kState, kCanFd);
-  const std::size_t blocks = encode_block(slots, Query::kState, kCanFdById, frames);
+  const std::size_t blocks = encode_block(slots, Query::kState, kCanFdById, 9, frames);
   MotorState state;
   state.motor = 1;
   state.query = Query::kStateTemperature;

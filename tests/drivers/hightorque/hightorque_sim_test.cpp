@@ -194,7 +194,7 @@ TEST_F(HighTorqueSimTest, BlockFrameForSixMotorsGetsSixReplies) {
   std::vector<BlockSlot> slots;
   for (int id = 1; id <= 6; ++id) slots.push_back(BlockSlot{.motor = id, .command = mit(0.1 * id, 10, 1)});
   std::array<CanMessage, 5> frames{};
-  const std::size_t count = encode_block(slots, Query::kState, kScalingById, frames);
+  const std::size_t count = encode_block(slots, Query::kState, kScalingById, 6, frames);
   ASSERT_EQ(count, 1U);
   send(frames[0]);
   auto got = replies(6);
@@ -219,7 +219,7 @@ TEST_F(HighTorqueSimTest, UnsetBlockSlotsKeepTheirPreviousValues) {
   partial.torque_nm = std::numeric_limits<double>::quiet_NaN();
   const std::array<BlockSlot, 1> slots{BlockSlot{.motor = 2, .command = partial}};
   std::array<CanMessage, 5> frames{};
-  ASSERT_EQ(encode_block(slots, Query::kState, kScalingById, frames), 1U);
+  ASSERT_EQ(encode_block(slots, Query::kState, kScalingById, 6, frames), 1U);
   send(frames[0]);
   ASSERT_EQ(replies(1).size(), 1U);
   const nlohmann::json entry = motor(2);
@@ -331,13 +331,13 @@ TEST_F(HighTorqueSimTest, StatusPushSendsRepliesByItself) {
 
 TEST_F(HighTorqueSimTest, ChangeIdAnswersOnTheNewId) {
   start_bus("1-3");
-  const auto changed = result_of(encode_change_id(3, 9));
+  const auto changed = result_of(encode_change_id(3, 9).value());
   ASSERT_TRUE(changed);
   EXPECT_TRUE(changed->success);
   EXPECT_EQ(changed->motor, 3);
   EXPECT_TRUE(query(9));
   EXPECT_FALSE(query(3));
-  const auto taken = result_of(encode_change_id(9, 1));
+  const auto taken = result_of(encode_change_id(9, 1).value());
   ASSERT_TRUE(taken);
   EXPECT_FALSE(taken->success) << "motor 1 is on the bus already";
 }
@@ -469,11 +469,14 @@ class BoardHost {
     packet.resize(size);
     send_bytes(packet);
   }
+  /// One packet of a port whose highest motor is the highest of `slots`.
   void send_slots(BoardCommand command, std::span<const BlockSlot> slots) {
-    std::array<std::uint8_t, kMaxBoardPayload> payload{};
-    const std::size_t size = encode_board_slots(command, slots, scaling_, payload);
-    ASSERT_GT(size, 0U);
-    send(command, std::span<const std::uint8_t>(payload.data(), size));
+    int highest = 0;
+    for (const BlockSlot& slot : slots) highest = std::max(highest, slot.motor);
+    BoardSlotBuffer buffer(highest);
+    const std::span<const std::uint8_t> payload = buffer.update(command, slots, scaling_);
+    ASSERT_FALSE(payload.empty());
+    send(command, payload);
   }
   /// Packets read until `count` arrived or `timeout` passed.
   std::vector<BoardFrame> receive(std::size_t count, std::chrono::milliseconds timeout = 500ms) {
@@ -541,13 +544,13 @@ TEST_F(HighTorqueBoardTest, MitSlotsMoveTheMotorsAndTheBoardAnswersEveryState) {
 TEST_F(HighTorqueBoardTest, APacketWithABadCrcIsIgnored) {
   std::vector<std::uint8_t> packet(kBoardHeaderSize + kMaxBoardPayload);
   const std::array<BlockSlot, 1> slots{BlockSlot{.motor = 1, .command = mit(0.5, 10, 1)}};
-  std::array<std::uint8_t, kMaxBoardPayload> payload{};
   std::array<MotorScaling, kMaxMotorId + 1> scaling{};
   scaling.fill(MotorScaling{.torque_per_unit = kBoardTorqueUnit, .torque_offset_nm = 0, .gain_factor = 1});
-  const std::size_t size = encode_board_slots(BoardCommand::kPositionVelocityTorqueKpKd, slots, scaling, payload);
-  ASSERT_GT(size, 0U);
-  const std::size_t total = encode_board_frame(BoardCommand::kPositionVelocityTorqueKpKd,
-                                               std::span<const std::uint8_t>(payload.data(), size), packet);
+  BoardSlotBuffer buffer(1);
+  const std::span<const std::uint8_t> payload =
+      buffer.update(BoardCommand::kPositionVelocityTorqueKpKd, slots, scaling);
+  ASSERT_FALSE(payload.empty());
+  const std::size_t total = encode_board_frame(BoardCommand::kPositionVelocityTorqueKpKd, payload, packet);
   packet.resize(total);
   packet.back() ^= 0xFF;  // the payload no longer matches its CRC-16
   host_->send_bytes(packet);
