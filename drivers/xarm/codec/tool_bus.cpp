@@ -130,6 +130,10 @@ Bytes encode_tool_modbus_exception(std::uint8_t slave, std::uint8_t function, st
   return ByteWriter().u8(kToolHostId).u8(slave).u8(function | kModbusExceptionBit).u8(code).take();
 }
 
+Request tool_register_read_request(std::uint8_t id, std::uint16_t address) {
+  return Request{.reg = number(Register::kToolRead16), .params = ByteWriter().u8(id).u16_be(address).take()};
+}
+
 Result<ToolRegisterAccess> parse_tool_register_access(std::uint8_t reg, ByteView params) {
   const bool write = reg == number(Register::kToolWrite16) || reg == number(Register::kToolWrite32);
   const std::size_t expected = write ? kToolRegisterWriteBytes : kToolRegisterReadBytes;

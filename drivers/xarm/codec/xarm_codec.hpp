@@ -445,6 +445,8 @@ struct ToolRegisterAccess {
   std::uint16_t address = 0;
   double value = 0;  // writes only
 };
+/// Register 128: read one 16-bit register of device `id` (the tool board 9, the gripper 8).
+Request tool_register_read_request(std::uint8_t id, std::uint16_t address);
 /// 128 / 130: id and address. 127 / 129: id, address and the fp32 value (a trailing byte, the
 /// SDK's "sync" flag, is accepted).
 Result<ToolRegisterAccess> parse_tool_register_access(std::uint8_t reg, ByteView params);

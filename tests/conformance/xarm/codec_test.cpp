@@ -74,6 +74,10 @@ std::optional<Result<Request>> robotd_request(const Frame& sdk) {
     case Register::kIsJointLimit:
       return wrap(parse_joint_params(sdk.reg, body),
                   [](const JointValues& joints) { return is_joint_limit_request(joints); });
+    case Register::kToolRead16:
+      return wrap(parse_tool_register_access(sdk.reg, body), [](const ToolRegisterAccess& access) {
+        return tool_register_read_request(access.id, access.address);
+      });
     case Register::kToolModbus:
       return wrap(parse_tool_modbus_request(body), [](const ToolModbusRequest& modbus) {
         return modbus.function == kModbusReadHolding
@@ -147,6 +151,9 @@ std::optional<Result<Bytes>> reencoded_reply(const Frame& request, const Reply& 
     case Register::kCleanWar:
     case Register::kServoJ:
       return Result<Bytes>(Bytes{});  // state only
+    case Register::kToolRead16:
+      return wrap(parse_tool_register_value(data),
+                  [](std::int32_t value) { return encode_tool_register_value(value); });
     case Register::kToolModbus: {
       const auto modbus = parse_tool_modbus_request(request.body);
       if (!modbus) return modbus.error();
