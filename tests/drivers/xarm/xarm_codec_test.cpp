@@ -898,7 +898,7 @@ TEST(MotionFeedback, RefusesOtherFramesAndShortBodies) {
 // ---- Reports -------------------------------------------------------------------------------
 
 TEST(Reports, KindNamesAndPorts) {
-  for (const ReportKind kind : {ReportKind::kReal, ReportKind::kNormal, ReportKind::kRealtime}) {
+  for (const ReportKind kind : {ReportKind::kReal, ReportKind::kNormal, ReportKind::kRealtime, ReportKind::kRich}) {
     EXPECT_EQ(parse_report_kind(report_kind_name(kind)), kind);
   }
   EXPECT_EQ(report_kind_name(ReportKind::kReal), "real");
@@ -907,7 +907,8 @@ TEST(Reports, KindNamesAndPorts) {
   EXPECT_EQ(default_report_port(ReportKind::kReal), 30003);
   EXPECT_EQ(default_report_port(ReportKind::kNormal), 30001);
   EXPECT_EQ(default_report_port(ReportKind::kRealtime), 30000);
-  EXPECT_EQ(parse_report_kind("rich"), std::nullopt);
+  EXPECT_EQ(default_report_port(ReportKind::kRich), 30002);
+  EXPECT_EQ(parse_report_kind("fast"), std::nullopt);
   EXPECT_EQ(parse_report_kind("Real"), std::nullopt);
   EXPECT_EQ(parse_report_kind(""), std::nullopt);
 }
