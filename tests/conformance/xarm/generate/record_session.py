@@ -136,7 +136,8 @@ def record(args):
         'how': 'the SDK\'s public XArmAPI calls of tests/conformance/xarm/generate/session.py against '
                'robotd-xarm-sim --model %s --firmware %s, through a recording proxy on the SDK\'s ports '
                '(502, 30000-30003) in a private network namespace' % (MODEL, FIRMWARE),
-        'regenerate': 'git -C <mirror> archive <commit> | tar -x -C /tmp/xarm-sdk && '
+        'regenerate': 'mkdir -p /tmp/xarm-sdk && git -C <xArm-Python-SDK clone> archive <commit> | '
+                      'tar -x -C /tmp/xarm-sdk && echo <commit> > /tmp/xarm-sdk/.commit && '
                       'tests/conformance/xarm/generate/record_session.py --sdk /tmp/xarm-sdk '
                       '--sim build/bin/robotd-xarm-sim --out tests/conformance/xarm',
         'python': sys.version.split()[0],
