@@ -13,9 +13,11 @@ usage: record_session.py --sdk PATH_TO_SDK_CHECKOUT --sim PATH_TO_robotd-xarm-si
 """
 import argparse
 import datetime
+import fcntl
 import json
 import os
 import socket
+import struct
 import subprocess
 import sys
 import tempfile
@@ -38,10 +40,18 @@ FIRMWARE = '2.3.0'
 
 
 def in_private_namespace(argv):
-    """Re-runs this script in a network namespace of its own with loopback up."""
+    """Re-runs this script in a network namespace of its own (util-linux's unshare)."""
     unshare = ['unshare', '-n'] if os.geteuid() == 0 else ['unshare', '-rn']
-    inner = 'ip link set lo up && exec "$0" "$@" --inside-namespace'
-    return subprocess.call(unshare + ['sh', '-c', inner, sys.executable, os.path.abspath(__file__)] + argv)
+    return subprocess.call(unshare + [sys.executable, os.path.abspath(__file__)] + argv + ['--inside-namespace'])
+
+
+def loopback_up():
+    """A new network namespace starts with loopback down: SIOCSIFFLAGS |= IFF_UP (no iproute2)."""
+    siocgifflags, siocsifflags, iff_up = 0x8913, 0x8914, 0x1
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        request = struct.pack('16sH14x', b'lo', 0)
+        flags = struct.unpack('16sH14x', fcntl.ioctl(s, siocgifflags, request))[1]
+        fcntl.ioctl(s, siocsifflags, struct.pack('16sH14x', b'lo', flags | iff_up))
 
 
 def start_simulator(sim, control_path):
@@ -162,6 +172,7 @@ def main():
         raise SystemExit('--sdk %s is not an xArm-Python-SDK checkout (no xarm/wrapper/xarm_api.py)' % args.sdk)
     if not args.inside_namespace:
         return in_private_namespace(sys.argv[1:])
+    loopback_up()
     record(args)
     return 0
 
