@@ -19,13 +19,6 @@ constexpr std::uint16_t kDigitalOut = 0x0A15;
 constexpr std::uint16_t kAnalogIn1 = 0x0A16;
 constexpr std::uint16_t kAnalogIn2 = 0x0A17;
 
-std::string hex(std::uint16_t value) {
-  constexpr std::string_view kDigits = "0123456789ABCDEF";
-  std::string text = "0x0000";
-  for (std::size_t i = 0; i < 4; ++i) text[5 - i] = kDigits[(value >> (4 * i)) & 0xF];
-  return text;
-}
-
 }  // namespace
 
 Controller::Outcome Controller::tool_modbus(const Request& request) {
@@ -80,8 +73,8 @@ Controller::Outcome Controller::tool_read(const Request& request) {
   }
   if (!value) {
     if (!options_.quiet) {
-      spdlog::info("{}: device {} has no register {}", register_name(request.frame.reg), access.id,
-                   hex(access.address));
+      spdlog::info("{}: device {} has no register {:#06x}", register_name(request.frame.reg), access.id,
+                   access.address);
     }
     return failed();
   }
@@ -114,8 +107,8 @@ Controller::Outcome Controller::tool_write(const Request& request) {
   }
   if (!written) {
     if (!options_.quiet) {
-      spdlog::info("{}: device {} refused {} at register {}", register_name(request.frame.reg), access.id, value,
-                   hex(access.address));
+      spdlog::info("{}: device {} refused {} at register {:#06x}", register_name(request.frame.reg), access.id, value,
+                   access.address);
     }
     return failed();
   }
