@@ -1,6 +1,7 @@
 // The xArm gripper: Modbus requests to device 8 on the tool's RS-485 bus, carried by register 124
 // (UFACTORY xArm Gripper user manual §3.4.3; the SDK's set_gripper_* calls send the same frames).
 // Positions are the gripper's pulses (0 closed, 850 open), speeds its r/min, as in the vendor API.
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <thread>
