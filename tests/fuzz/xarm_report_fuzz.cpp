@@ -19,7 +19,7 @@ using namespace robotd::xarm;
 using robotd::fuzz::FuzzInput;
 
 constexpr std::array<ReportKind, 4> kKinds{ReportKind::kReal, ReportKind::kNormal, ReportKind::kRealtime,
-                                           ReportKind::kReal};
+                                           ReportKind::kRich};
 
 void read_packet(const Bytes& packet, ReportKind kind) {
   const auto report = parse_report(packet, kind);

@@ -1,5 +1,5 @@
-// The report ports' packets (§5.1 "real" 30003, §5.2 "normal" 30001, §5.4 "realtime" 30000):
-// the size-prefixed stream, each kind's layout, and the SDK's sanity checks.
+// The report ports' packets (§5.1 "real" 30003, §5.2 "normal" 30001, §5.3 "rich" 30002, §5.4
+// "realtime" 30000): the size-prefixed stream, each kind's layout, and the SDK's sanity checks.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -30,6 +30,9 @@ constexpr auto kKinds = std::to_array<KindInfo>({
     {ReportKind::kReal, "real", 30003, 87, 135},
     {ReportKind::kNormal, "normal", 30001, 133, 145},
     {ReportKind::kRealtime, "realtime", 30000, 784, 804},
+    // Rich packets grow with the firmware (the SDK reads up to 587 bytes); 245 is the layout
+    // every firmware sends, and any longer packet is accepted.
+    {ReportKind::kRich, "rich", 30002, 245, 245},
 });
 
 const KindInfo& info(ReportKind kind) {
@@ -45,6 +48,17 @@ constexpr std::size_t kForceTorqueRaw = 111;
 // Normal, from here in order: masks, codes, TCP offset, payload, sensitivities, gravity direction.
 constexpr std::size_t kBrakeMask = 87;
 }  // namespace basic
+
+// §5.3: after the normal report's 145 bytes.
+namespace rich {
+constexpr std::size_t kDeviceType = 145;  // then axes, master id, slave id, motor tid, motor fid
+constexpr std::size_t kFirmware = 151;
+constexpr std::size_t kFirmwareBytes = 30;
+constexpr std::size_t kTcpLimits = 181;  // 5 f, then the joints' 5 f, then rotation jerk and acc
+constexpr std::size_t kServos = 229;     // 8 × (status, code)
+constexpr std::uint8_t kMasterId = 0xAA;
+constexpr std::uint8_t kSlaveId = 0x55;
+}  // namespace rich
 
 // §5.4.
 namespace realtime {
@@ -122,6 +136,65 @@ ByteWriter normal_tail(const Report& report) {
   return tail;
 }
 
+/// Five floats: jerk, min acc, max acc, min speed, max speed; `scale` wire units per robotd unit.
+MotionLimits read_limits(ByteReader& reader, double scale) {
+  MotionLimits limits;
+  for (double* value : {&limits.jerk, &limits.min_acc, &limits.max_acc, &limits.min_speed, &limits.max_speed}) {
+    *value = read_f32(reader) / scale;
+  }
+  return limits;
+}
+
+void write_limits(ByteWriter& writer, const MotionLimits& limits, double scale) {
+  for (const double value : {limits.jerk, limits.min_acc, limits.max_acc, limits.min_speed, limits.max_speed}) {
+    writer.f32_le(value * scale);
+  }
+}
+
+RichFields read_rich(ByteView packet) {
+  RichFields fields;
+  ByteReader ids = reader_at(packet, rich::kDeviceType);
+  fields.device_type = ids.u8().value_or(0);
+  fields.axes = ids.u8().value_or(0);
+  const ByteView firmware = packet.subspan(rich::kFirmware, rich::kFirmwareBytes);
+  for (const std::uint8_t byte : firmware) {
+    if (byte == 0) break;
+    fields.firmware.push_back(byte >= 0x20 && byte < 0x7F ? static_cast<char>(byte) : '?');
+  }
+  ByteReader limits = reader_at(packet, rich::kTcpLimits);
+  fields.tcp = read_limits(limits, kMmPerM);
+  fields.joint = read_limits(limits, 1.0);
+  fields.rotation_jerk = read_f32(limits);
+  fields.rotation_max_acc = read_f32(limits);
+  ByteReader servos = reader_at(packet, rich::kServos);
+  for (ServoStatus& servo : fields.servos) {
+    servo.state = servos.u8().value_or(0);
+    servo.error = servos.u8().value_or(0);
+  }
+  return fields;
+}
+
+/// Offsets 145..244 of rich.
+ByteWriter rich_tail(const RichFields& fields) {
+  ByteWriter tail;
+  tail.u8(static_cast<std::uint8_t>(fields.device_type))
+      .u8(static_cast<std::uint8_t>(fields.axes))
+      .u8(rich::kMasterId)
+      .u8(rich::kSlaveId)
+      .u8(0)
+      .u8(0);
+  Bytes firmware(rich::kFirmwareBytes, 0);
+  std::copy_n(fields.firmware.begin(), std::min(fields.firmware.size(), rich::kFirmwareBytes), firmware.begin());
+  tail.bytes(firmware);
+  write_limits(tail, fields.tcp, kMmPerM);
+  write_limits(tail, fields.joint, 1.0);
+  tail.f32_le(fields.rotation_jerk).f32_le(fields.rotation_max_acc);
+  for (const ServoStatus& servo : fields.servos) {
+    tail.u8(static_cast<std::uint8_t>(servo.state)).u8(static_cast<std::uint8_t>(servo.error));
+  }
+  return tail;
+}
+
 }  // namespace
 
 std::string_view report_kind_name(ReportKind kind) { return info(kind).name; }
@@ -173,7 +246,10 @@ Result<Report> parse_report(ByteView packet, ReportKind kind) {
     return make_error(ErrorCode::kInvalidArgument, what + " size field says " + std::to_string(*size) +
                                                        " bytes but the packet has " + std::to_string(packet.size()));
   }
-  if (packet.size() != kind_info.short_size && packet.size() != kind_info.long_size) {
+  if (kind == ReportKind::kRich && packet.size() < kind_info.short_size) {
+    return size_error(what, "byte", packet.size(), kind_info.short_size, true);
+  }
+  if (kind != ReportKind::kRich && packet.size() != kind_info.short_size && packet.size() != kind_info.long_size) {
     return make_error(ErrorCode::kInvalidArgument, what + " has " + std::to_string(packet.size()) +
                                                        " bytes, expected " + std::to_string(kind_info.short_size) +
                                                        " or " + std::to_string(kind_info.long_size));
@@ -222,7 +298,7 @@ Result<Report> parse_report(ByteView packet, ReportKind kind) {
     report.force_torque = read_wrench(reader_at(packet, basic::kForceTorqueFiltered));
     report.has_force_torque = true;
   }
-  if (kind == ReportKind::kNormal) {
+  if (kind == ReportKind::kNormal || kind == ReportKind::kRich) {
     ByteReader tail = reader_at(packet, basic::kBrakeMask);
     report.brake_mask = tail.u8().value_or(0);
     report.enable_mask = tail.u8().value_or(0);
@@ -235,10 +311,14 @@ Result<Report> parse_report(ByteView packet, ReportKind kind) {
     report.collision_sensitivity = tail.u8().value_or(0);
     report.teach_sensitivity = tail.u8().value_or(0);
     report.has_settings = true;
-    if (packet.size() == kind_info.long_size) {  // older firmware's 133 bytes end before it
+    if (packet.size() >= info(ReportKind::kNormal).long_size) {  // older firmware's 133 bytes end before it
       for (double& axis : report.gravity_direction) axis = read_f32(tail);
       report.has_gravity_direction = true;
     }
+  }
+  if (kind == ReportKind::kRich) {
+    report.rich = read_rich(packet);
+    report.has_rich = true;
   }
   return report;
 }
@@ -248,6 +328,7 @@ Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torqu
   const bool long_real = kind == ReportKind::kReal && with_force_torque;
   // Fields Report does not model (target accelerations, currents, TCP speeds …) go out as zeros.
   const std::size_t size = kind == ReportKind::kNormal || long_real ? kind_info.long_size : kind_info.short_size;
+  const bool with_settings = kind == ReportKind::kNormal || kind == ReportKind::kRich;
   Bytes packet(size, 0);
   put(packet, 0, ByteWriter().u32_be(static_cast<std::uint32_t>(size)));
 
@@ -273,7 +354,8 @@ Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torqu
     put(packet, basic::kForceTorqueFiltered, wrench_field(report.force_torque));
     put(packet, basic::kForceTorqueRaw, wrench_field(report.force_torque));
   }
-  if (kind == ReportKind::kNormal) put(packet, basic::kBrakeMask, normal_tail(report));
+  if (with_settings) put(packet, basic::kBrakeMask, normal_tail(report));
+  if (kind == ReportKind::kRich) put(packet, rich::kDeviceType, rich_tail(report.rich));
   return packet;
 }
 

@@ -105,6 +105,12 @@ enum class Register : std::uint8_t {
   kIsJointLimit = 45,
   kIsTcpLimit = 46,
   kServoGetDbmsg = 106,
+  kToolModbus = 124,  // RS485_RTU: a Modbus RTU frame to a device on the tool's RS-485 bus
+  kToolGpioError = 125,
+  kToolWrite16 = 127,  // TGPIO_W16B: a 16-bit register of the tool board or the gripper
+  kToolRead16 = 128,   // TGPIO_R16B
+  kToolWrite32 = 129,  // TGPIO_W32B
+  kToolRead32 = 130,   // TGPIO_R32B
   kFeedbackCheck = 253,
   kSetFeedbackType = 254,
   kMotionFeedback = 255,  // unsolicited frames only (§2.5)
@@ -373,6 +379,80 @@ struct ServoStatus {
 Result<std::array<ServoStatus, 8>> parse_servo_dbmsg(ByteView data);
 Bytes encode_servo_dbmsg(const std::array<ServoStatus, 8>& servos);  // the SDKs' 16 bytes
 
+// ---- The tool's RS-485 bus and the xArm gripper (registers 124–130) -----------------------
+// Register 124 carries a Modbus RTU frame without its CRC, after the tool board's host id; the
+// reply carries the host id and the device's Modbus reply (UFACTORY xArm Gripper user manual
+// §3.4.3, "Private TCP"). Registers 127–130 read and write one register of the tool board (host id
+// 9) or the gripper (id 8) directly: u8 id, u16 address, and for a write an fp32 value; a read
+// answers a 4-byte big-endian integer.
+
+inline constexpr std::uint8_t kToolHostId = 9;
+inline constexpr std::uint8_t kGripperId = 8;
+inline constexpr std::uint8_t kModbusReadHolding = 0x03;
+inline constexpr std::uint8_t kModbusWriteMultiple = 0x10;
+/// The tool board's RS-485 baud rate register (read with 128 at host id 9): an index into
+/// kToolBaudRates.
+inline constexpr std::uint16_t kToolBaudRateAddress = 0x0A0B;
+inline constexpr std::array<int, 13> kToolBaudRates = {4800,   9600,   19200,   38400,   57600,   115200, 230400,
+                                                       460800, 921600, 1000000, 1500000, 2000000, 2500000};
+
+/// The xArm gripper's Modbus registers (16-bit; positions take two, high word first).
+enum class GripperRegister : std::uint16_t {
+  kStatus = 0x0000,  // bits 0–1: 0 stopped, 1 moving, 2 gripping (firmware ≥ 3.4.3)
+  kErrorCode = 0x000F,
+  kEnable = 0x0100,
+  kMode = 0x0101,  // 0 position
+  kResetError = 0x0109,
+  kSpeed = 0x0303,  // r/min
+  kTargetPosition = 0x0700,
+  kPosition = 0x0702,
+  kVersionMajor = 0x0801,  // then minor 0x0802, patch 0x0803
+};
+/// Gripper positions in pulses: 0 closed, 850 open (the SDK's and Studio's range: -10 … 850).
+inline constexpr int kGripperMinPulses = -10;
+inline constexpr int kGripperMaxPulses = 850;
+inline constexpr int kGripperMaxSpeedRpm = 5000;
+
+/// A Modbus function a device on the tool's bus is asked to run.
+struct ToolModbusRequest {
+  std::uint8_t host_id = kToolHostId;
+  std::uint8_t slave = kGripperId;
+  std::uint8_t function = kModbusReadHolding;
+  std::uint16_t address = 0;
+  std::uint16_t count = 0;            // registers read or written
+  std::vector<std::uint16_t> values;  // written (function 0x10)
+};
+/// Read `count` holding registers from `address` (function 0x03).
+Request tool_modbus_read_request(std::uint8_t slave, std::uint16_t address, std::uint16_t count);
+/// Write `values` from `address` (function 0x10).
+Request tool_modbus_write_request(std::uint8_t slave, std::uint16_t address, std::span<const std::uint16_t> values);
+/// The registers a read returned; kInvalidArgument for a Modbus exception (naming its code), a
+/// reply from another device or function, or a wrong byte count.
+Result<std::vector<std::uint16_t>> parse_tool_modbus_read_reply(ByteView data, std::uint8_t slave, std::uint16_t count);
+/// kInvalidArgument unless the reply echoes the write (device, function, address, count).
+Result<void> parse_tool_modbus_write_reply(ByteView data, std::uint8_t slave, std::uint16_t address,
+                                           std::uint16_t count);
+/// The simulator's side: the request in register 124's parameters (functions 0x03 and 0x10).
+Result<ToolModbusRequest> parse_tool_modbus_request(ByteView params);
+Bytes encode_tool_modbus_read_reply(std::uint8_t slave, std::span<const std::uint16_t> values);
+Bytes encode_tool_modbus_write_reply(std::uint8_t slave, std::uint16_t address, std::uint16_t count);
+/// Modbus exception `code` (1 function, 2 address, 3 value) for `function`.
+Bytes encode_tool_modbus_exception(std::uint8_t slave, std::uint8_t function, std::uint8_t code);
+
+/// Registers 127–130: one register of the tool board or the gripper.
+struct ToolRegisterAccess {
+  std::uint8_t id = kToolHostId;
+  std::uint16_t address = 0;
+  double value = 0;  // writes only
+};
+/// Register 128: read one 16-bit register of device `id` (the tool board 9, the gripper 8).
+Request tool_register_read_request(std::uint8_t id, std::uint16_t address);
+/// 128 / 130: id and address. 127 / 129: id, address and the fp32 value (a trailing byte, the
+/// SDK's "sync" flag, is accepted).
+Result<ToolRegisterAccess> parse_tool_register_access(std::uint8_t reg, ByteView params);
+Bytes encode_tool_register_value(std::int32_t value);
+Result<std::int32_t> parse_tool_register_value(ByteView data);
+
 // ---- Unsolicited motion feedback (§2.5) ----------------------------------------------------
 
 struct MotionFeedback {
@@ -393,8 +473,9 @@ enum class ReportKind : std::uint8_t {
   kReal,      // port 30003, 100 Hz, 87 or 135 bytes
   kNormal,    // port 30001, 5 Hz, 133 or 145 bytes
   kRealtime,  // port 30000, fw ≥ 2.1.0, 250 Hz, 784 bytes (the SDK's 804 accepted)
+  kRich,      // port 30002, 5 Hz, the SDK's default: normal + 100 bytes; 245 bytes or more
 };
-/// "real", "normal", "realtime"; parse_report_kind is its inverse (nullopt otherwise).
+/// "real", "normal", "realtime", "rich"; parse_report_kind is its inverse (nullopt otherwise).
 std::string_view report_kind_name(ReportKind kind);
 std::optional<ReportKind> parse_report_kind(std::string_view name);
 std::uint16_t default_report_port(ReportKind kind);  // 30003, 30001, 30000
@@ -412,6 +493,28 @@ class ReportSplitter {
  private:
   Bytes buffer_;
   std::optional<std::string> broken_;
+};
+
+/// A rich report's motion limits, in robotd's units (TCP: m/s³, m/s², m/s; joints: rad/s³,
+/// rad/s², rad/s).
+struct MotionLimits {
+  double jerk = 0;
+  double min_acc = 0;
+  double max_acc = 0;
+  double min_speed = 0;
+  double max_speed = 0;
+};
+
+/// What the rich report (port 30002) adds to the normal one, offsets 145–244 (§5.3).
+struct RichFields {
+  int device_type = 0;  // §7, as get_version's
+  int axes = 0;
+  std::string firmware;  // "2.3.0", NUL padded to 30 bytes on the wire
+  MotionLimits tcp;
+  MotionLimits joint;
+  double rotation_jerk = 0;
+  double rotation_max_acc = 0;
+  std::array<ServoStatus, 8> servos{};  // joints 1–7, then the tool (servo_get_dbmsg's order)
 };
 
 struct Report {
@@ -444,14 +547,16 @@ struct Report {
   bool has_targets = false;              // kRealtime only: the joint targets the arm follows
   JointValues target_position_rad{};
   JointValues target_velocity_rad_s{};
+  bool has_rich = false;  // kRich only
+  RichFields rich;
 };
 /// One whole packet (its size prefix included). kInvalidArgument when the size field disagrees
 /// with the packet, the size is not one this kind has, or state ≥ 10 / mode ≥ 12 (the SDK's
 /// sanity checks).
 Result<Report> parse_report(ByteView packet, ReportKind kind);
 /// The simulator's side: kReal 135 bytes when with_force_torque else 87; kNormal 145 (with the
-/// gravity direction); kRealtime 784. Fields a kind does not carry are ignored, whatever the
-/// has_* flags say.
+/// gravity direction); kRealtime 784; kRich 245 (what follows on newer firmware is not encoded). Fields a kind does not
+/// carry are ignored, whatever the has_* flags say.
 Bytes encode_report(const Report& report, ReportKind kind, bool with_force_torque = false);
 
 // ---- Error tables (§6) ---------------------------------------------------------------------

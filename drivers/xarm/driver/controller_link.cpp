@@ -32,6 +32,7 @@ std::chrono::nanoseconds report_period(ReportKind kind) {
     case ReportKind::kReal:
       return std::chrono::milliseconds(10);
     case ReportKind::kNormal:
+    case ReportKind::kRich:
       return std::chrono::milliseconds(200);
     case ReportKind::kRealtime:
       return std::chrono::milliseconds(4);

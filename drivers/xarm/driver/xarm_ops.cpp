@@ -14,7 +14,7 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 29> kOps{{
+constexpr std::array<OpSpec, 37> kOps{{
     {"motion_en", R"({"joint": 1..dof or "all", "enable": bool}: enable or disable joint motors (resets the system))",
      driver::kNeedsFreeMotors},
     {"set_state", R"({"state": 0 start | 3 pause | 4 stop | 6 decelerate to stop}: the motion state)",
@@ -67,6 +67,16 @@ constexpr std::array<OpSpec, 29> kOps{{
     {"get_version", R"({}: axes, device type, model, serial numbers and firmware)"},
     {"feedback_check", R"({}: a no-op round trip to the control box)"},
     {"state", R"({}: what robotd last received: joints, state, mode, codes, servo phase, link counters)"},
+    {"gripper_enable", R"({"enable": bool}: switch the xArm gripper's motor on or off (tool RS-485, 2 Mbit/s))"},
+    {"gripper_set_speed", R"({"speed_rpm": 1..5000}: the gripper's speed for its next moves)"},
+    {"gripper_set_position",
+     R"({"position": -10..850 pulses (0 closed, 850 open), "speed_rpm" (unchanged), "wait" (false), )"
+     R"("timeout_s" (10)}: move the gripper; with wait, until it is there or stops on an object)"},
+    {"gripper_open", R"({"speed_rpm", "wait", "timeout_s"}: gripper_set_position to 850 (open))"},
+    {"gripper_close", R"({"speed_rpm", "wait", "timeout_s"}: gripper_set_position to 0 (closed))"},
+    {"gripper_get_position", R"({}: the gripper's position in pulses)"},
+    {"gripper_get_error", R"({}: the gripper's error code and text (0: none))"},
+    {"gripper_clean_error", R"({}: clear the gripper's error (enable it again afterwards))"},
 }};
 
 }  // namespace
@@ -112,6 +122,12 @@ Result<nlohmann::json> XarmOps::call(const std::string& op, const nlohmann::json
     if (op == "servo_get_dbmsg") return servo_get_dbmsg(args);
     if (op == "get_version") return get_version(args);
     if (op == "state") return state(args);
+    if (op == "gripper_enable") return gripper_enable(args);
+    if (op == "gripper_set_speed") return gripper_set_speed(args);
+    if (op == "gripper_set_position" || op == "gripper_open" || op == "gripper_close") return gripper_move(op, args);
+    if (op == "gripper_get_position") return gripper_get_position(args);
+    if (op == "gripper_get_error") return gripper_get_error(args);
+    if (op == "gripper_clean_error") return gripper_clean_error(args);
   } catch (const std::exception& e) {
     return make_error(ErrorCode::kInvalidArgument, op + ": " + e.what());
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,6 +60,23 @@ class XarmOps {
   /// execution state.
   template <class Parse, class Fill>
   Result<nlohmann::json> answer(std::string_view op, const Request& request, Parse parse, Fill fill);
+
+  // The xArm gripper on the tool's RS-485 bus (ops_gripper.cpp).
+  Result<nlohmann::json> gripper_enable(const nlohmann::json& args);
+  Result<nlohmann::json> gripper_set_speed(const nlohmann::json& args);
+  /// gripper_set_position, gripper_open (850 pulses) and gripper_close (0).
+  Result<nlohmann::json> gripper_move(const std::string& op, const nlohmann::json& args);
+  Result<nlohmann::json> gripper_get_position(const nlohmann::json& args);
+  Result<nlohmann::json> gripper_get_error(const nlohmann::json& args);
+  Result<nlohmann::json> gripper_clean_error(const nlohmann::json& args);
+  /// Reads `count` gripper registers from `address`.
+  Result<std::vector<std::uint16_t>> gripper_read(std::string_view op, GripperRegister address, std::uint16_t count);
+  /// Writes gripper registers from `address`, then reads the gripper's error code: a write the
+  /// gripper took while it reports an error is refused in its words.
+  Result<nlohmann::json> gripper_write(std::string_view op, GripperRegister address,
+                                       std::span<const std::uint16_t> values);
+  /// Refuses unless the tool's RS-485 bus runs at the gripper's 2 Mbit/s.
+  std::optional<Error> check_tool_baud_rate(std::string_view op);
 
   // Shared by the files above (xarm_ops.cpp).
   /// Sends and judges: the reply, or kRefused "<op>: <execution state text>: <controller error

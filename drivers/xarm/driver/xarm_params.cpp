@@ -27,6 +27,7 @@ int report_period_ms(ReportKind kind) {
     case ReportKind::kReal:
       return 10;
     case ReportKind::kNormal:
+    case ReportKind::kRich:
       return 200;
     case ReportKind::kRealtime:
       return 4;

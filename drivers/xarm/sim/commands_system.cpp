@@ -1,6 +1,7 @@
 // System registers (spec §3, §4.1; seed Part I, III): version, enable and brakes, state and mode,
 // errors and warnings, configuration, servo status, motion feedback.
 #include <string>
+#include <string_view>
 
 #include "controller.hpp"
 
@@ -11,23 +12,42 @@ constexpr int kAllJoints = 8;
 constexpr int kMaxSensitivity = 5;
 constexpr int kFeedbackBits = 0x07;  // 1 started, 2 finished, 4 non-motion task triggered
 
-std::string robot_serial(const ArmModel& model) { return "XSROBOTDSIM" + std::to_string(model.type_code); }
-std::string control_box_serial(const ArmModel& model) { return "XBROBOTDSIM" + std::to_string(model.type_code); }
+// Serial numbers in the controller's format: two letters for the product, four digits for the
+// series (the SDK reads them: ≥ 1300 a 1300-series arm or box, 1305 … 8499 the "-1305" joint
+// limits), then the unit; get_version carries their first six characters ("6,6,XI1303,AC1303,
+// v2.3.0"; UFACTORY's protocol page shows "6,6,XI1202,AC1302,v1.12.10" and SNs "XI120204201B02",
+// "AC130202B02L02"). XF, XI, XS are the xArm 5, 6, 7 prefixes seen in the SDK's users' logs; the
+// Lite 6 and 850 ones are not public, and the unit part says this is the simulator.
+constexpr std::string_view kUnit = "RBTDSIM1";
+constexpr std::string_view kControlBoxSeries = "AC1303";
+
+std::string series(const ArmModel& model) {
+  const std::string_view name = model.name;
+  const std::string_view digits = name.ends_with("-1305") ? "1305" : name == "uf850" ? "8500" : "1303";
+  const std::string_view prefix = model.type_code == 9    ? "LI"
+                                  : model.type_code == 12 ? "FX"
+                                  : model.dof == 5        ? "XF"
+                                  : model.dof == 7        ? "XS"
+                                                          : "XI";
+  return std::string(prefix) + std::string(digits);
+}
+std::string robot_serial(const ArmModel& model) { return series(model) + std::string(kUnit); }
+std::string control_box_serial() { return std::string(kControlBoxSeries) + std::string(kUnit); }
 
 }  // namespace
 
 Controller::Outcome Controller::get_version(const Request& /*request*/) {
   const Version version{.axes = static_cast<int>(model_.dof),
                         .type = model_.type_code,
-                        .robot_sn = robot_serial(model_),
-                        .control_box_sn = control_box_serial(model_),
+                        .robot_sn = series(model_),
+                        .control_box_sn = std::string(kControlBoxSeries),
                         .firmware = options_.firmware};
   return answer(encode_version(version));
 }
 
 Controller::Outcome Controller::get_robot_sn(const Request& /*request*/) {
   return answer(
-      encode_robot_sn(SerialNumbers{.robot_sn = robot_serial(model_), .control_box_sn = control_box_serial(model_)}));
+      encode_robot_sn(SerialNumbers{.robot_sn = robot_serial(model_), .control_box_sn = control_box_serial()}));
 }
 
 Controller::Outcome Controller::motion_enable(const Request& request) {

@@ -20,7 +20,8 @@ using sim_control::RequestError;
 constexpr std::int64_t kMaxReplyCount = 1'000'000;
 constexpr std::int64_t kGripperSlot = 8;
 constexpr const char* kOps =
-    "state, error, warning, servo_error, estop, drop_replies, garbage, disconnect, silence, set_joints";
+    "state, error, warning, servo_error, gripper_error, estop, drop_replies, garbage, disconnect, silence, "
+    "set_joints";
 /// A reply's transaction id no request used: half the id space away from the client's last one.
 constexpr std::uint16_t kUnusedTransactionOffset = 0x8000;
 constexpr std::uint8_t kGarbageRegister = 0x63;
@@ -75,6 +76,9 @@ json Simulator::control(const json& request) {
       }
       controller_.set_servo_error(static_cast<std::size_t>(joint - 1),
                                   static_cast<int>(integer_field(request, op, "code", 0, 255)));
+    } else if (op == "gripper_error") {
+      expect_fields(request, op, {"code"});
+      controller_.set_gripper_error(static_cast<int>(integer_field(request, op, "code", 0, 255)));
     } else if (op == "estop") {
       expect_fields(request, op, {"pressed"});
       controller_.set_estop(boolean_field(request, op, "pressed"));

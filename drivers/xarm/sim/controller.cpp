@@ -18,10 +18,19 @@ constexpr int kLastServoError = 17;
 /// mount): set_gravity_dir (51) is not emulated.
 constexpr std::array<double, 3> kGravityDirection{0, 0, -1};
 
-constexpr std::uint8_t number(Register reg) { return static_cast<std::uint8_t>(reg); }
-
 bool disables_motors(int error) {
   return is_estop_error(error) || (error >= kFirstServoError && error <= kLastServoError);
+}
+
+/// The data the getters of §4.2 this simulator does not emulate answer, in bytes (0 for the
+/// others): check_verify 3, get_report_tau_or_i 5, get_tcp_rotation_radius 6,
+/// get_allow_approx_motion 7, get_reduced_mode 49, get_reduced_state 53 (the short form),
+/// get_joint_tau 55, get_dh_params 67, get_movement 69.
+std::size_t getter_reply_bytes(std::uint8_t reg) {
+  static const std::map<std::uint8_t, std::size_t> sizes = {{3, 1},   {5, 1},   {6, 4},    {7, 4}, {49, 1},
+                                                            {53, 21}, {55, 28}, {67, 112}, {69, 1}};
+  const auto found = sizes.find(reg);
+  return found == sizes.end() ? 0 : found->second;
 }
 
 std::uint8_t bit_mask(const std::array<bool, kMaxDof>& bits, std::size_t dof) {
@@ -79,6 +88,12 @@ const std::map<std::uint8_t, Controller::Handler>& Controller::handlers() {
       {number(Register::kGetFk), &C::get_fk},
       {number(Register::kIsJointLimit), &C::is_joint_limit},
       {number(Register::kServoGetDbmsg), &C::servo_get_dbmsg},
+      {number(Register::kToolModbus), &C::tool_modbus},
+      {number(Register::kToolGpioError), &C::tool_gpio_error},
+      {number(Register::kToolWrite16), &C::tool_write},
+      {number(Register::kToolRead16), &C::tool_read},
+      {number(Register::kToolWrite32), &C::tool_write},
+      {number(Register::kToolRead32), &C::tool_read},
       {number(Register::kFeedbackCheck), &C::feedback_check},
       {number(Register::kSetFeedbackType), &C::set_feedback_type},
   };
@@ -136,7 +151,9 @@ Controller::Outcome Controller::not_emulated(const Request& request) {
   if (!options_.quiet) {
     spdlog::info("{} is not emulated by robotd-xarm-sim (W13)", register_name(request.frame.reg));
   }
-  return failed();
+  Outcome outcome = failed();
+  outcome.data.assign(getter_reply_bytes(request.frame.reg), 0);
+  return outcome;
 }
 
 Controller::Outcome Controller::no_solution(const Request& request, const std::string& why) {
@@ -204,6 +221,7 @@ void Controller::advance(std::int64_t now_ns) {
   const double dt_s = static_cast<double>(now_ns - advanced_ns_) * 1e-9;
   if (dt_s <= 0) return;
   advanced_ns_ = now_ns;
+  gripper_.advance(dt_s);
   const JointValues before = joints_;
   if (mode_ == kModePosition && (state_ == kStateMoving || state_ == kStatePaused)) {
     std::vector<CacheEvent> events;
@@ -258,6 +276,8 @@ Report Controller::report(std::int64_t now_ns) const {
   report.has_timestamp = true;
   report.timestamp_us = static_cast<std::uint64_t>((now_ns - started_ns_) / 1000);
   report.has_force_torque = options_.report_force_torque;  // no sensor is simulated: zeros
+  report.has_rich = true;
+  report.rich = rich_fields();
   report.has_targets = true;
   if (const auto& servo_target = servo_.target()) {
     report.target_position_rad = *servo_target;
@@ -269,6 +289,31 @@ Report Controller::report(std::int64_t now_ns) const {
     report.target_velocity_rad_s = cache_.velocity();
   }
   return report;
+}
+
+RichFields Controller::rich_fields() const {
+  // The minimum accelerations and speeds the SDK assumes until a report says otherwise; the
+  // maximum ones are the limits set (or the codec's ranges); rotation limits are not modelled.
+  constexpr double kMinTcpAccM_S2 = 0.001;
+  constexpr double kMinTcpSpeedM_S = 0.0001;
+  constexpr double kMinJointAccRad_S2 = 0.01;
+  constexpr double kMinJointSpeedRad_S = 0.0001;
+  RichFields fields;
+  fields.device_type = model_.type_code;
+  fields.axes = static_cast<int>(model_.dof);
+  fields.firmware = options_.firmware;
+  fields.tcp = MotionLimits{.jerk = config_.tcp_jerk_m_s3,
+                            .min_acc = kMinTcpAccM_S2,
+                            .max_acc = config_.tcp_max_acc_m_s2,
+                            .min_speed = kMinTcpSpeedM_S,
+                            .max_speed = model_.max_tcp_speed_m_s};
+  fields.joint = MotionLimits{.jerk = config_.joint_jerk_rad_s3,
+                              .min_acc = kMinJointAccRad_S2,
+                              .max_acc = config_.joint_max_acc_rad_s2,
+                              .min_speed = kMinJointSpeedRad_S,
+                              .max_speed = kMaxJointSpeedRadS};
+  std::copy(servo_status_.begin(), servo_status_.end(), fields.servos.begin());
+  return fields;
 }
 
 void Controller::latch_error(int code) {
@@ -315,6 +360,7 @@ nlohmann::json Controller::state() const {
           {"mode", mode_},
           {"error", error_},
           {"warning", warning_},
+          {"gripper", gripper_.state()},
           {"estop_held", estop_held_},
           {"enabled", first(enabled_)},
           {"brakes_released", first(brake_released_)},

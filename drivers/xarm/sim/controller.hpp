@@ -25,8 +25,12 @@
 #include "robotd/result.hpp"
 #include "servo_stream.hpp"
 #include "sim_options.hpp"
+#include "xarm_gripper.hpp"
 
 namespace robotd::xarm::sim {
+
+/// A register's number on the wire.
+constexpr std::uint8_t number(Register reg) { return static_cast<std::uint8_t>(reg); }
 
 /// A frame for one client that it did not ask for: a motion-feedback frame (§2.5).
 struct Feedback {
@@ -62,6 +66,8 @@ class Controller {
   /// Servo `slot` (0 … 6 a joint, 7 the gripper) reports (1, code); a joint also latches error
   /// 10 + joint. Code 0 clears the slot's entry.
   void set_servo_error(std::size_t slot, int code);
+  /// The gripper reports error `code` (0 clears it) and stops.
+  void set_gripper_error(int code) { gripper_.set_error(code); }
   /// The e-stop button: pressed latches error 1, which clean_err cannot clear until released.
   void set_estop(bool pressed);
   /// Puts the joints there (within the limits); kRefused while the cache holds commands.
@@ -94,7 +100,9 @@ class Controller {
   bool can_queue() const;
   /// Sets warning 12 (parameter error) and says why in the log.
   Outcome parameter_error(const Request& request, const std::string& why);
-  /// Sets warning 13 (command does not exist): a register this simulator does not emulate.
+  /// Sets warning 13 (command does not exist): a register this simulator does not emulate. The
+  /// reply carries zeros for the data a getter of §4.2 answers, so that a client reading it sees
+  /// the failed status rather than a short reply.
   Outcome not_emulated(const Request& request);
   /// Sets warning 14 (command has no solution).
   Outcome no_solution(const Request& request, const std::string& why);
@@ -109,6 +117,8 @@ class Controller {
   Eigen::Isometry3d tcp_offset() const { return isometry_of(config_.tcp_offset); }
   Pose tcp_pose(const JointValues& joints) const;
   JointValues joint_efforts() const;
+  /// The rich report's tail (§5.3): the model, the firmware, the motion limits, the servos.
+  RichFields rich_fields() const;
 
   // commands_system.cpp
   Outcome get_version(const Request& request);
@@ -137,6 +147,12 @@ class Controller {
   Outcome servo_j(const Request& request);
   Outcome set_motion_limit(const Request& request);
   Outcome queue_joint_move(const Request& request, const JointValues& target, double speed_rad_s, double acc_rad_s2);
+
+  // commands_tool.cpp
+  Outcome tool_modbus(const Request& request);
+  Outcome tool_gpio_error(const Request& request);
+  Outcome tool_read(const Request& request);
+  Outcome tool_write(const Request& request);
 
   // commands_kinematics.cpp
   Outcome set_tcp_offset(const Request& request);
@@ -167,6 +183,9 @@ class Controller {
   MotionConfig config_;
   std::optional<MotionConfig> saved_config_;
   std::array<ServoStatus, kServoSlots> servo_status_{};
+  XarmGripper gripper_;
+  int tool_baud_index_ = 11;  // 2 Mbit/s, the xArm gripper's rate
+  int tool_digital_out_ = 0;
   std::map<ClientId, std::uint8_t> feedback_masks_;  // set_feedback_type, per connection
   std::vector<Feedback> feedback_;
 

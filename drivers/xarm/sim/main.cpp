@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   int real_port = 0;
   int normal_port = 0;
   int realtime_port = 0;
+  int rich_port = 0;
   app.add_option("--port", options.port, "the command port (the real controller's is 502)")
       ->required()
       ->check(CLI::Range(1, 65535));
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
   app.add_option("--normal-report-port", normal_port, "serve the 5 Hz \"normal\" report here (30001)")
       ->check(CLI::Range(1, 65535));
   app.add_option("--realtime-report-port", realtime_port, "serve the 250 Hz real-time report here (30000)")
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--rich-report-port", rich_port, "serve the 5 Hz \"rich\" report here (30002, the SDK's default)")
       ->check(CLI::Range(1, 65535));
   app.add_flag("--report-ft", options.report_force_torque, "real reports with the F/T fields (135 bytes, not 87)");
   app.add_option("--host", options.host, "the IPv4 address to listen on")->capture_default_str();
@@ -66,6 +69,7 @@ int main(int argc, char** argv) {
   options.report_port = report_port(real_port);
   options.normal_report_port = report_port(normal_port);
   options.realtime_report_port = report_port(realtime_port);
+  options.rich_report_port = report_port(rich_port);
   const auto model = robotd::xarm::find_model(options.model);
   if (!model) return fail("--model \"" + options.model + "\" is not a model it knows (" + known_models() + ")");
   if (!std::regex_match(options.firmware, std::regex(R"(\d{1,3}\.\d{1,3}\.\d{1,3})"))) {

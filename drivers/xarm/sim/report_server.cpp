@@ -33,6 +33,7 @@ std::int64_t ReportServer::period_ns(ReportKind kind) {
     case ReportKind::kReal:
       return kRealPeriodNs;
     case ReportKind::kNormal:
+    case ReportKind::kRich:
       return kNormalPeriodNs;
     case ReportKind::kRealtime:
       return kRealtimePeriodNs;

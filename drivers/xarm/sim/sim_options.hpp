@@ -14,6 +14,7 @@ struct SimOptions {
   std::optional<std::uint16_t> report_port;           // --report-port: "real" report, 100 Hz (the arm's 30003)
   std::optional<std::uint16_t> normal_report_port;    // --normal-report-port: 5 Hz (30001)
   std::optional<std::uint16_t> realtime_report_port;  // --realtime-report-port: 250 Hz (30000)
+  std::optional<std::uint16_t> rich_report_port;      // --rich-report-port: 5 Hz (30002, the SDK's default)
   bool report_force_torque = false;                   // --report-ft: 135-byte real reports
   std::string model = "xarm6";
   std::string firmware = "2.3.0";

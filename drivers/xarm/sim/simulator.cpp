@@ -29,10 +29,11 @@ Result<void> Simulator::open() {
   auto listener = transport::listen_tcp(transport::Endpoint{options_.host, options_.port});
   if (!listener) return make_error(listener.error().code, "the command port: " + listener.error().message);
   listener_ = std::move(listener).value();
-  const std::array<std::pair<ReportKind, std::optional<std::uint16_t>>, 3> ports = {
+  const std::array<std::pair<ReportKind, std::optional<std::uint16_t>>, 4> ports = {
       {{ReportKind::kReal, options_.report_port},
        {ReportKind::kNormal, options_.normal_report_port},
-       {ReportKind::kRealtime, options_.realtime_report_port}}};
+       {ReportKind::kRealtime, options_.realtime_report_port},
+       {ReportKind::kRich, options_.rich_report_port}}};
   for (const auto& [kind, port] : ports) {
     if (!port) continue;
     auto report_listener = transport::listen_tcp(transport::Endpoint{options_.host, *port});

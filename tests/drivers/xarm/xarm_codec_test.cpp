@@ -898,7 +898,7 @@ TEST(MotionFeedback, RefusesOtherFramesAndShortBodies) {
 // ---- Reports -------------------------------------------------------------------------------
 
 TEST(Reports, KindNamesAndPorts) {
-  for (const ReportKind kind : {ReportKind::kReal, ReportKind::kNormal, ReportKind::kRealtime}) {
+  for (const ReportKind kind : {ReportKind::kReal, ReportKind::kNormal, ReportKind::kRealtime, ReportKind::kRich}) {
     EXPECT_EQ(parse_report_kind(report_kind_name(kind)), kind);
   }
   EXPECT_EQ(report_kind_name(ReportKind::kReal), "real");
@@ -907,7 +907,8 @@ TEST(Reports, KindNamesAndPorts) {
   EXPECT_EQ(default_report_port(ReportKind::kReal), 30003);
   EXPECT_EQ(default_report_port(ReportKind::kNormal), 30001);
   EXPECT_EQ(default_report_port(ReportKind::kRealtime), 30000);
-  EXPECT_EQ(parse_report_kind("rich"), std::nullopt);
+  EXPECT_EQ(default_report_port(ReportKind::kRich), 30002);
+  EXPECT_EQ(parse_report_kind("fast"), std::nullopt);
   EXPECT_EQ(parse_report_kind("Real"), std::nullopt);
   EXPECT_EQ(parse_report_kind(""), std::nullopt);
 }
@@ -1415,6 +1416,65 @@ TEST(Robustness, TruncatedMessagesAreRefusedNotOverread) {
     }
   }
   EXPECT_GT(cases, 1500U);
+}
+
+TEST(ToolBus, GripperFramesAreTheManualsAndRepliesAreChecked) {
+  // UFACTORY xArm Gripper user manual §3.4.3: set position 0x0700 (two registers) through 124.
+  const std::array<std::uint16_t, 2> target{0x0000, 0x0258};
+  EXPECT_EQ(tool_modbus_write_request(kGripperId, 0x0700, target).params,
+            (Bytes{0x09, 0x08, 0x10, 0x07, 0x00, 0x00, 0x02, 0x04, 0x00, 0x00, 0x02, 0x58}));
+  EXPECT_EQ(tool_modbus_read_request(kGripperId, 0x0702, 2).params, (Bytes{0x09, 0x08, 0x03, 0x07, 0x02, 0x00, 0x02}));
+  const auto values =
+      parse_tool_modbus_read_reply(Bytes{0x09, 0x08, 0x03, 0x04, 0x00, 0x00, 0x02, 0x58}, kGripperId, 2);
+  ASSERT_TRUE(values) << values.error().message;
+  EXPECT_EQ(values.value(), (std::vector<std::uint16_t>{0, 600}));
+  const auto exception = parse_tool_modbus_read_reply(Bytes{0x09, 0x08, 0x83, 0x02}, kGripperId, 2);
+  ASSERT_FALSE(exception);
+  EXPECT_EQ(exception.error().message, "tool device 8 answered Modbus exception 2 to function 3");
+  const auto other =
+      parse_tool_modbus_write_reply(Bytes{0x09, 0x08, 0x10, 0x01, 0x00, 0x00, 0x01}, kGripperId, 0x0700, 2);
+  ASSERT_FALSE(other);
+  EXPECT_EQ(other.error().message, "tool_modbus_rtu write reply echoes 1 registers at 0x0100, expected 2 at 0x0700");
+  const auto parsed = parse_tool_modbus_request(tool_modbus_write_request(kGripperId, 0x0700, target).params);
+  ASSERT_TRUE(parsed);
+  EXPECT_EQ(parsed.value().values, (std::vector<std::uint16_t>{0, 600}));
+  EXPECT_EQ(tool_register_read_request(kToolHostId, kToolBaudRateAddress).params, (Bytes{0x09, 0x0A, 0x0B}));
+  EXPECT_EQ(parse_tool_register_value(Bytes{0, 0, 0, 11}).value(), 11);
+}
+
+TEST(Reports, RichPacketsCarryTheNormalFieldsThenTheModelLimitsAndServos) {
+  Report report;
+  report.state = kStateSleeping;
+  report.error_code = 23;
+  report.collision_sensitivity = 3;
+  report.rich.device_type = 6;
+  report.rich.axes = 6;
+  report.rich.firmware = "2.3.0";
+  report.rich.tcp.max_speed = 1.0;
+  report.rich.joint.max_speed = 3.14;
+  report.rich.servos[1] = ServoStatus{.state = 1, .error = 11};
+  const Bytes packet = encode_report(report, ReportKind::kRich);
+  ASSERT_EQ(packet.size(), 245U);
+  EXPECT_EQ(packet[145], 6);
+  EXPECT_EQ(packet[146], 6);
+  EXPECT_EQ(packet[151], '2');
+  EXPECT_EQ(packet[231], 1);
+  EXPECT_EQ(packet[232], 11);
+  const auto parsed = parse_report(packet, ReportKind::kRich);
+  ASSERT_TRUE(parsed) << parsed.error().message;
+  EXPECT_EQ(parsed.value().error_code, 23);
+  EXPECT_EQ(parsed.value().rich.firmware, "2.3.0");
+  EXPECT_NEAR(parsed.value().rich.tcp.max_speed, 1.0, 1e-6) << "mm/s on the wire";
+  Bytes longer = packet;  // newer firmware appends fields
+  longer.resize(587, 0);
+  longer[2] = 0x02;
+  longer[3] = 0x4B;
+  EXPECT_TRUE(parse_report(longer, ReportKind::kRich));
+  Bytes shorter(packet.begin(), packet.begin() + 145);
+  shorter[3] = 145;
+  const auto refused = parse_report(shorter, ReportKind::kRich);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().message, "rich report carries 145 bytes, expected at least 245");
 }
 
 TEST(Robustness, TruncatedReportsAndRepliesSayWhy) {

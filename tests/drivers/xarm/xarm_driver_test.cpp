@@ -509,6 +509,42 @@ TEST_F(XarmDriverTest, QueriesAndSettingsAnswerInRobotdsUnits) {
   EXPECT_EQ(call("feedback_check")["execution_state"], 0);
 }
 
+TEST_F(XarmDriverTest, TheGripperOpensClosesAndReportsItsErrorsOverTheToolBus) {
+  ASSERT_TRUE(driver_.connect());
+  const auto moving_disabled =
+      driver_.call("gripper_set_position", {{"position", 400}, {"wait", true}, {"timeout_s", 1}});
+  ASSERT_FALSE(moving_disabled) << "a disabled gripper does not move";
+  EXPECT_NE(moving_disabled.error().message.find("disabled (gripper_enable first)"), std::string::npos)
+      << moving_disabled.error().message;
+
+  call("gripper_enable", {{"enable", true}});
+  EXPECT_TRUE(sim_state()["gripper"]["enabled"].get<bool>());
+  call("gripper_set_speed", {{"speed_rpm", 3000}});
+  EXPECT_EQ(sim_state()["gripper"]["speed_rpm"], 3000);
+  const nlohmann::json opened = call("gripper_open", {{"wait", true}});
+  EXPECT_EQ(opened["position"], 850) << opened.dump();
+  EXPECT_EQ(call("gripper_get_position")["position"], 850);
+  const nlohmann::json placed = call("gripper_set_position", {{"position", 300}, {"speed_rpm", 5000}, {"wait", true}});
+  EXPECT_EQ(placed["position"], 300) << placed.dump();
+  EXPECT_EQ(sim_state()["gripper"]["speed_rpm"], 5000);
+  call("gripper_close");
+  EXPECT_EQ(sim_state()["gripper"]["target_pulses"], 0) << "without wait: the target is set, the op returns";
+
+  const auto beyond = driver_.call("gripper_set_position", {{"position", 900}});
+  ASSERT_FALSE(beyond);
+  EXPECT_NE(beyond.error().message.find("position"), std::string::npos) << beyond.error().message;
+
+  ASSERT_TRUE(sim_.control({{"op", "gripper_error"}, {"code", 14}})["ok"].get<bool>());
+  EXPECT_EQ(call("gripper_get_error")["error"], 14);
+  const auto faulted = driver_.call("gripper_open", nlohmann::json::object());
+  ASSERT_FALSE(faulted);
+  EXPECT_NE(faulted.error().message.find("gripper error 14"), std::string::npos) << faulted.error().message;
+  call("gripper_clean_error");
+  EXPECT_EQ(call("gripper_get_error")["error"], 0);
+  call("gripper_enable", {{"enable", true}});
+  EXPECT_EQ(call("gripper_open", {{"wait", true}})["position"], 850);
+}
+
 TEST_F(XarmDriverTest, ManualEnableRefusesServoModeUntilTheMotorsAreOn) {
   XarmDriver manual;
   ASSERT_TRUE(manual.configure(driver_params(sim_, {{"enable", "manual"}})));

@@ -362,9 +362,16 @@ TEST_F(XarmSimTest, EveryRegisterAnswersWithItsDataShape) {
   EXPECT_EQ(version.value().axes, 6);
   EXPECT_EQ(version.value().type, 6);
   EXPECT_EQ(version.value().firmware, "2.3.0");
-  EXPECT_EQ(version.value().robot_sn.rfind("XS", 0), 0U);
-  EXPECT_EQ(version.value().control_box_sn.rfind("XB", 0), 0U);
-  EXPECT_EQ(client_->request(plain_request(Register::kGetRobotSn)).data.size(), 40U);
+  // The controller's format: the version carries the series, the SN register the whole numbers;
+  // the SDK reads digits 2-5 as a number.
+  EXPECT_EQ(version.value().robot_sn, "XI1303");
+  EXPECT_EQ(version.value().control_box_sn, "AC1303");
+  const Reply serials = client_->request(plain_request(Register::kGetRobotSn));
+  EXPECT_EQ(serials.data.size(), 40U);
+  const auto parsed_serials = parse_robot_sn(serials.data);
+  ASSERT_TRUE(parsed_serials) << parsed_serials.error().message;
+  EXPECT_EQ(parsed_serials.value().robot_sn, "XI1303RBTDSIM1");
+  EXPECT_EQ(parsed_serials.value().control_box_sn, "AC1303RBTDSIM1");
   const std::vector<std::pair<Request, std::size_t>> shapes = {
       {plain_request(Register::kGetState), 1},
       {plain_request(Register::kGetCmdnum), 2},
@@ -769,6 +776,9 @@ TEST_F(XarmSimTest, BadRequestsSetInvalidAndAWarning) {
   const Reply circle = client_->request(raw_request(Register::kMoveCircle, Bytes(64, 0)));
   EXPECT_EQ(circle.status_byte, kInvalid | kWarning);
   EXPECT_EQ(circle.data.size(), 2U) << "a motion register still answers with the count";
+  const Reply reduced_mode = client_->request(Request{.reg = 49, .params = {}});
+  EXPECT_EQ(reduced_mode.status_byte, kInvalid | kWarning);
+  EXPECT_EQ(reduced_mode.data, Bytes{0}) << "an unemulated getter answers its u8, zero, so a client reads the status";
   client_->request(plain_request(Register::kCleanWar));
 
   const Reply modbus = client_->request(plain_request(Register::kGetState), 0);
