@@ -5,9 +5,11 @@ chunk by chunk (so a client's batching reaches the controller unchanged), and ev
 terminated line is recorded with its connection, its direction and the time it was read.
 
 UDP push: the controller pushes to whatever `set_realtime_push` names. When the client asks for
-a push to `push_ip`:`port`, the proxy forwards that request with the port replaced by its own UDP
-port (it records the client's request as sent), and relays each datagram to the client's port,
-recording it. The replacement is the only change the proxy makes to what passes through.
+a push to `ip`:`port`, the proxy forwards that request with the port (and ip) replaced by its
+own UDP port, relays each datagram to the client's port and records it. The client listens on
+the port the controller reports, so `get_realtime_push` replies go back to it with the client's
+port again. These two replacements are the only changes the proxy makes to what passes; the
+transcript has each line as its sender wrote it.
 """
 
 import json
@@ -104,14 +106,13 @@ class RecordingProxy:
                 direction = key.data
                 splitter = requests if direction == "request" else replies
                 lines = splitter.feed(data)
-                if direction == "request":
-                    if len(lines) > 1:
-                        self.transcript.add(connection=connection, event="segment", direction=direction,
-                                            lines=len(lines))
-                    # Whole lines only (the controller splits at CR LF too); a batch stays one write.
-                    upstream.sendall(b"".join(self._rewrite(line) + b"\r\n" for line in lines))
-                else:
-                    client.sendall(data)
+                if direction == "request" and len(lines) > 1:
+                    self.transcript.add(connection=connection, event="segment", direction=direction,
+                                        lines=len(lines))
+                # Whole lines only (both ends split at CR LF); a batch stays one write.
+                rewrite, peer = (self._to_controller, upstream) if direction == "request" else (self._to_client, client)
+                if lines:
+                    peer.sendall(b"".join(rewrite(line) + b"\r\n" for line in lines))
                 for line in lines:
                     self.transcript.add(connection=connection, direction=direction, text=line)
         selector.close()
@@ -119,17 +120,33 @@ class RecordingProxy:
         upstream.close()
         self.transcript.add(connection=connection, event="close")
 
-    def _rewrite(self, line):
-        """The client's line as the controller gets it: a push request is pointed at the proxy."""
+    @staticmethod
+    def _push_message(line, command):
+        """`line` as a dict if it is `command`'s message with a "port", else None."""
         try:
             message = json.loads(line)
         except ValueError:
-            return line.encode("utf-8", errors="surrogateescape")
-        if not isinstance(message, dict) or message.get("command") != "set_realtime_push" or "port" not in message:
+            return None
+        if isinstance(message, dict) and message.get("command") == command and "port" in message:
+            return message
+        return None
+
+    def _to_controller(self, line):
+        """A client's line as the controller gets it: a push request is pointed at the proxy."""
+        message = self._push_message(line, "set_realtime_push")
+        if message is None:
             return line.encode("utf-8", errors="surrogateescape")
         self._push_target = (message.get("ip") or self._host, message["port"])
         message["port"] = self.udp_port
         message["ip"] = self._host
+        return json.dumps(message, separators=(",", ":")).encode()
+
+    def _to_client(self, line):
+        """A controller's line as the client gets it: the push settings name the client's port."""
+        message = self._push_message(line, "get_realtime_push")
+        if message is None or self._push_target is None or message["port"] != self.udp_port:
+            return line.encode("utf-8", errors="surrogateescape")
+        message["ip"], message["port"] = self._push_target
         return json.dumps(message, separators=(",", ":")).encode()
 
     def _udp_loop(self):

@@ -64,14 +64,15 @@ def push(arm, push_port):
     received = []
 
     def on_state(state):
-        if len(received) < 3:
-            received.append(plain(state.to_dict()))
+        if not received:
+            parsed = state.to_dict()
+            received.append(plain({key: parsed[key] for key in ("errCode", "joint_status", "err", "waypoint")}))
 
     callback = rm_realtime_arm_state_callback_ptr(on_state)
     arm.rm_realtime_arm_state_call_back(callback)
     call(arm, "rm_set_realtime_push", rm_realtime_push_config_t(1, True, push_port, 0, "127.0.0.1"))
     time.sleep(0.3)
-    print(json.dumps({"call": "rm_realtime_arm_state_call_back", "args": [], "returned": received[:1]}), flush=True)
+    print(json.dumps({"call": "rm_realtime_arm_state_call_back", "args": [], "returned": received}), flush=True)
     return callback
 
 
@@ -88,8 +89,8 @@ def motion(arm):
 
 
 def stream(arm, speed_deg_s=31.0, period_s=0.01, duration_s=1.0):
-    """movej_canfd at 100 Hz moving joint 1 at speed_deg_s, each frame sent on its deadline; the
-    SDK's socket decides how the frames go out (it does not set TCP_NODELAY)."""
+    """movej_canfd at 100 Hz moving joint 1 at speed_deg_s, each frame sent on its deadline (the
+    SDK sets TCP_NODELAY: each frame leaves on its own)."""
     _, state = arm.rm_get_current_arm_state()
     start = list(state["joint"][:6])
     frames = int(duration_s / period_s)
