@@ -8,7 +8,6 @@
 // Differences robotd makes on purpose are listed in differences.json with the reason and robotd's
 // own value, which the test checks.
 #include <algorithm>
-#include <array>
 #include <optional>
 #include <string>
 #include <vector>

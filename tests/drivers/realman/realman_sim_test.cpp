@@ -986,7 +986,10 @@ TEST_F(RealmanSimTest, HandAngleMinusOneKeepsThatDegreeOfFreedom) {
             json({{"command", "set_hand_angle"}, {"set_state", true}}));
   const auto event = client_->next_event(2000ms);
   ASSERT_TRUE(event);
-  EXPECT_EQ(*event, json({{"state", "current_trajectory_state"}, {"trajectory_state", true}, {"device", 2}}));
+  EXPECT_EQ(*event, json({{"state", "current_trajectory_state"},
+                          {"trajectory_state", true},
+                          {"device", 2},
+                          {"trajectory_connect", 0}}));
   ASSERT_EQ(
       client_->request(
           {{"command", "set_hand_angle"}, {"hand_angle", {-1, -1, 0, -1, -1, 999}}, {"block", true}})["set_state"],
