@@ -99,7 +99,7 @@ def run_session(name, sim_options, session, args, tmp):
                     if line.startswith("current c api version")), None)
     if result.returncode != 0:
         sys.stderr.write(f"[{name}] sdk_session.py exited {result.returncode}:\n{result.stderr[-2000:]}\n")
-    return transcript, calls, version, sim_state, sim_command, result.returncode
+    return transcript, calls, version, sim_state, result.returncode
 
 
 def transcript_lines(name, transcript):
@@ -149,8 +149,7 @@ def main():
             open(out / "transcript.jsonl", "w", encoding="utf-8") as transcript_file, \
             open(out / "sdk_results.jsonl", "w", encoding="utf-8") as results_file:
         for name, sim_options, session in SESSIONS:
-            transcript, calls, version, sim_state, sim_command, code = run_session(name, sim_options, session, args,
-                                                                                  tmp)
+            transcript, calls, version, sim_state, code = run_session(name, sim_options, session, args, tmp)
             versions.add(version)
             for line in transcript_lines(name, transcript):
                 transcript_file.write(json.dumps(line, ensure_ascii=False) + "\n")
