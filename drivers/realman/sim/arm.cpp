@@ -153,7 +153,7 @@ Result<Eigen::Isometry3d> Arm::next_start_flange() const {
 
 void Arm::malformed_frame(std::string why, std::int64_t now_ns) {
   ++counters_.frames;
-  intervals_.arrived(now_ns);
+  intervals_.arrived(now_ns, !stream_target_);
   reject_frame(counters_.malformed, std::move(why));
 }
 
@@ -165,10 +165,10 @@ void Arm::reject_frame(std::uint64_t& counter, std::string why) {
 void Arm::pass_through(const PassThroughFrame& frame, std::int64_t now_ns) {
   ++counters_.frames;
   counters_.follow = frame.follow;
-  intervals_.arrived(now_ns);
+  const bool streaming = stream_target_.has_value();
+  intervals_.arrived(now_ns, !streaming);
   if (auto ready = ready_to_move(); !ready) return reject_frame(counters_.refused, ready.error().message);
   if (auto within = check_limits(frame.joints); !within) return reject_frame(counters_.ignored, within.error().message);
-  const bool streaming = stream_target_.has_value();
   const JointValues& previous = streaming ? *stream_target_ : position_;
   double largest_step_rad = 0;
   std::size_t largest_joint = 0;
@@ -185,12 +185,11 @@ void Arm::pass_through(const PassThroughFrame& frame, std::int64_t now_ns) {
     return reject_frame(counters_.ignored, joint + " would move " + degrees(largest_step_rad) +
                                                " in one frame (at most 10°): " + system_error_text(0x1007));
   }
-  // The frame's own interval, but never less than the stream's period: one late frame and the
-  // early one after it are jitter, not speed.
-  const auto interval_s = intervals_.last_interval_s();
-  const auto period_s = intervals_.recent_period_s();
-  if (streaming && interval_s && period_s) {
-    const double speed = largest_step_rad / std::max(*interval_s, *period_s);
+  // The commanded step at the rate the client streams, not at the frame's arrival interval,
+  // which batching and jitter make meaningless.
+  const auto period_s = intervals_.stream_period_s();
+  if (streaming && period_s) {
+    const double speed = largest_step_rad / *period_s;
     if (speed > kMaxFrameSpeedRadS) {
       raise_error(0x1007);
       return reject_frame(counters_.ignored, joint + " would turn at " + degrees(speed) +

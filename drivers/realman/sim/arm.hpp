@@ -59,6 +59,8 @@ class Arm {
   JointValues target() const;
   /// The flange pose; nullopt for a model without a DH table.
   std::optional<EulerPose> flange_pose() const;
+  /// The DH table the kinematics use; nullopt for a model without one.
+  const std::optional<ArmKinematics>& kinematics() const { return kinematics_; }
   ArmStatus status(std::int64_t now_ns) const;
   const TrajectoryQueue& trajectories() const { return trajectories_; }
 

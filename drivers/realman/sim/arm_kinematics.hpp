@@ -30,6 +30,7 @@ class ArmKinematics {
   static std::optional<ArmKinematics> for_product(std::string_view product_version, const ArmModel& model);
 
   std::size_t dof() const { return rows_.size(); }
+  const std::vector<DhRow>& rows() const { return rows_; }
   /// The flange pose for the first dof() entries of `joints_rad`.
   Eigen::Isometry3d flange(const JointValues& joints_rad) const;
 

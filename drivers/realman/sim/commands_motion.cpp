@@ -53,7 +53,9 @@ nlohmann::json Controller::movej(const CommandRequest& request) {
 }
 
 nlohmann::json Controller::movej_p(const CommandRequest& request) {
-  Segment segment = segment_of(request, "movej_p");
+  // A joint-space move, reported as "movej" by get_arm_current_trajectory: the vendor SDK's
+  // blocking movej_p polls it and gives up on a type it does not know.
+  Segment segment = segment_of(request, "movej");
   segment.pose = pose_field(request);
   auto joints = arm_.solve(*segment.pose);
   if (!joints) throw Refusal(joints.error().message);

@@ -131,7 +131,7 @@ nlohmann::json Controller::get_arm_software_info(const CommandRequest& /*request
                           {"dynamic_info", {{"model_version", kVersion}}}};
   if (options_.generation == Generation::k4) {
     reply["robot_controller_version"] = "4.0";
-    reply["communication_info"] = {{"version", kVersion}};
+    reply["communication_info"] = {{"build_time", kBuildTime}, {"version", kVersion}};
     reply["program_info"] = {{"build_time", kBuildTime}, {"version", kVersion}};
   } else {
     reply["plan_info"] = {{"build_time", kBuildTime}, {"version", kVersion}};

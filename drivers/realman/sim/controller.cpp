@@ -74,6 +74,13 @@ const std::map<std::string, Controller::CommandSpec, std::less<>>& Controller::c
       {"get_init_pose", {"get_init_pose", "", &C::get_init_pose, true, true}},
       {"get_joint_min_pos", {"get_joint_min_pos", "", &C::get_joint_min_pos, true, true}},
       {"get_joint_max_pos", {"get_joint_max_pos", "", &C::get_joint_max_pos, true, true}},
+      // The frames, the mounting and the joint parameters the vendor SDK reads at connect
+      {"get_current_work_frame", {"get_current_work_frame", "", &C::get_current_work_frame, true, true}},
+      {"get_current_tool_frame", {"get_current_tool_frame", "", &C::get_current_tool_frame, true, true}},
+      {"get_install_pose", {"get_install_pose", "", &C::get_install_pose, true, true}},
+      {"get_joint_max_speed", {"get_joint_max_speed", "", &C::get_joint_max_speed, true, true}},
+      {"get_joint_max_acc", {"get_joint_max_acc", "", &C::get_joint_max_acc, true, true}},
+      {"get_DH_data", {"get_DH_data", "", &C::get_DH_data, true, true}},
       // §5 end effectors
       {"set_gripper_route", {"set_gripper_route", "state", &C::set_gripper_route, true, true}},
       {"set_gripper_release", {"set_gripper", "state", &C::set_gripper_release, true, true}},
@@ -176,7 +183,11 @@ void Controller::emit_trajectory_end(const TrajectoryEnd& end) {
 void Controller::emit_device_end(ClientId client, int device, bool reached) {
   events_.push_back(
       Event{.client = client,
-            .message = {{"state", "current_trajectory_state"}, {"trajectory_state", reached}, {"device", device}}});
+            // trajectory_connect as for a last arm segment: the vendor SDK refuses a completion without it.
+            .message = {{"state", "current_trajectory_state"},
+                        {"trajectory_state", reached},
+                        {"device", device},
+                        {"trajectory_connect", 0}}});
 }
 
 void Controller::add_errors(nlohmann::json& object) const {

@@ -127,6 +127,14 @@ class Controller {
   /// A 1-based joint number from a request, as an index; Refusal naming `key` otherwise.
   std::size_t joint_number(const char* key, std::int64_t number) const;
 
+  // commands_arm_parameters.cpp
+  nlohmann::json get_current_work_frame(const CommandRequest& request);
+  nlohmann::json get_current_tool_frame(const CommandRequest& request);
+  nlohmann::json get_install_pose(const CommandRequest& request);
+  nlohmann::json get_joint_max_speed(const CommandRequest& request);
+  nlohmann::json get_joint_max_acc(const CommandRequest& request);
+  nlohmann::json get_DH_data(const CommandRequest& request);
+
   // commands_effectors.cpp
   nlohmann::json set_gripper_route(const CommandRequest& request);
   nlohmann::json set_gripper_release(const CommandRequest& request);

@@ -4,28 +4,24 @@
 
 namespace robotd::realman::sim {
 
-void FrameIntervals::arrived(std::int64_t now_ns) {
+void FrameIntervals::arrived(std::int64_t now_ns, bool first_of_stream) {
   if (last_arrival_ns_) {
-    const std::int64_t interval_ns = std::max<std::int64_t>(0, now_ns - *last_arrival_ns_);
-    const std::int64_t interval_us = interval_ns / 1000;
+    const std::int64_t interval_us = std::max<std::int64_t>(0, now_ns - *last_arrival_ns_) / 1000;
     ++histogram_[std::min(static_cast<std::size_t>(interval_us), kBins - 1)];
     ++count_;
     max_us_ = std::max(max_us_, interval_us);
-    last_interval_s_ = static_cast<double>(interval_ns) * 1e-9;
-    recent_s_[recent_next_] = *last_interval_s_;
-    recent_next_ = (recent_next_ + 1) % kRecent;
-    recent_count_ = std::min(recent_count_ + 1, kRecent);
   }
   last_arrival_ns_ = now_ns;
+  if (first_of_stream) stream_arrivals_ns_.clear();
+  stream_arrivals_ns_.push_back(now_ns);
+  while (now_ns - stream_arrivals_ns_.front() > kPeriodWindowNs) stream_arrivals_ns_.pop_front();
 }
 
-std::optional<double> FrameIntervals::recent_period_s() const {
-  if (recent_count_ < kMinRecent) return std::nullopt;
-  std::array<double, kRecent> sorted = recent_s_;
-  const auto end = sorted.begin() + static_cast<std::ptrdiff_t>(recent_count_);
-  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(recent_count_ / 2);
-  std::nth_element(sorted.begin(), middle, end);
-  return *middle;
+std::optional<double> FrameIntervals::stream_period_s() const {
+  if (stream_arrivals_ns_.size() < 2) return std::nullopt;
+  const std::int64_t span_ns = stream_arrivals_ns_.back() - stream_arrivals_ns_.front();
+  if (span_ns < kMinPeriodSpanNs) return std::nullopt;
+  return static_cast<double>(span_ns) * 1e-9 / static_cast<double>(stream_arrivals_ns_.size() - 1);
 }
 
 std::int64_t FrameIntervals::percentile_us(double fraction) const {

@@ -275,6 +275,33 @@ TEST_F(RealmanSimTest, QueriesAnswerWithTheirStateKey) {
   EXPECT_EQ(client_->request(plain("get_arm_software_info")).value("command", ""), "arm_software_info");
 }
 
+// The vendor SDK (RM_API2 v1.1.5) asks these at rm_create_robot_arm and gives up on the first it
+// cannot parse; the shapes and units are what it parsed and what its setters send
+// (tests/conformance/realman).
+TEST_F(RealmanSimTest, TheQueriesTheVendorSdkAsksAtConnectAreAnswered) {
+  EXPECT_EQ(client_->request(plain("get_current_work_frame")),
+            json({{"state", "current_work_frame"}, {"frame_name", "Base"}, {"pose", {0, 0, 0, 0, 0, 0}}}));
+  EXPECT_EQ(client_->request(plain("get_current_tool_frame")), json({{"state", "current_tool_frame"},
+                                                                     {"tool_name", "Arm_Tip"},
+                                                                     {"pose", {0, 0, 0, 0, 0, 0}},
+                                                                     {"payload", 0},
+                                                                     {"position", {0, 0, 0}}}));
+  EXPECT_EQ(client_->request(plain("get_install_pose")), json({{"state", "install_pose"}, {"pose", {0, 0, 0}}}));
+  // 180 °/s = 30 rpm and 720 °/s² = 120 rpm/s, in 0.001 rpm (/s).
+  EXPECT_EQ(client_->request(plain("get_joint_max_speed")),
+            json({{"state", "joint_max_speed"}, {"joint_speed", {30000, 30000, 30000, 30000, 30000, 30000}}}));
+  EXPECT_EQ(client_->request(plain("get_joint_max_acc")),
+            json({{"state", "joint_max_acc"}, {"joint_acc", {120000, 120000, 120000, 120000, 120000, 120000}}}));
+  // RM65's table: [alpha 0.001°, a µm, d µm, offset 0.001°] per joint.
+  EXPECT_EQ(client_->request(plain("get_DH_data")), json({{"command", "get_DH_data"},
+                                                          {"joint_1", {0, 0, 240500, 0}},
+                                                          {"joint_2", {90000, 0, 0, 90000}},
+                                                          {"joint_3", {0, 256000, 0, 90000}},
+                                                          {"joint_4", {90000, 0, 210000, 0}},
+                                                          {"joint_5", {-90000, 0, 0, 0}},
+                                                          {"joint_6", {90000, 0, 144000, 0}}}));
+}
+
 TEST_F(RealmanSimTest, SettersAnswerWithTheirResultKey) {
   const std::vector<std::tuple<json, const char*, const char*>> setters = {
       {{{"command", "set_arm_power"}, {"arm_power", 1}}, "set_arm_power", "arm_power"},
@@ -520,6 +547,9 @@ TEST_F(RealmanSimTest, MovejPReachesThePoseInJointSpace) {
   json goal = client_->request(plain("get_current_arm_state"))["arm_state"]["pose"];
   goal[0] = goal[0].get<std::int64_t>() + 40'000;
   ASSERT_EQ(client_->request({{"command", "movej_p"}, {"pose", goal}, {"v", 80}})["receive_state"], true);
+  // A joint-space move: the vendor SDK's blocking movej_p waits for "movej" and gives up on any
+  // type it does not know.
+  EXPECT_EQ(client_->request(plain("get_arm_current_trajectory"))["type"], "movej");
   ASSERT_TRUE(client_->next_event(2000ms));
   const json end = client_->request(plain("get_current_arm_state"))["arm_state"]["pose"];
   for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(end[i].get<double>(), goal[i].get<double>(), 20) << "axis " << i;
@@ -627,14 +657,34 @@ TEST_F(RealmanSimTest, AFrameMoreThanTenDegreesAwayIsIgnoredAndLatches0x1007) {
 }
 
 TEST_F(RealmanSimTest, AFrameFasterThan180DegreesPerSecondIsIgnored) {
-  stream(20, 5ms, [](int k) { return std::vector<double>{0.1 * (k + 1), 0, 0, 0, 0, 0}; });
+  stream(60, 5ms, [](int k) { return std::vector<double>{0.1 * (k + 1), 0, 0, 0, 0, 0}; });
   std::this_thread::sleep_for(5ms);
-  client_->send(canfd({2.0 + 5, 0, 0, 0, 0, 0}));  // 5° in ≈ 5 ms: 1000 °/s
+  client_->send(canfd({6.0 + 5, 0, 0, 0, 0, 0}));  // 5° in one 5 ms frame: 1000 °/s
   std::this_thread::sleep_for(50ms);
   const json s = state();
   EXPECT_EQ(s["pass_through"]["ignored"], 1) << s["pass_through"].dump();
   EXPECT_EQ(s["errors"], json({0x1007}));
-  EXPECT_NEAR(joints_deg()[0], 2, 1e-6);
+  EXPECT_NEAR(joints_deg()[0], 6, 1e-6);
+}
+
+// A client that does not set TCP_NODELAY (the vendor SDK) has its 10 ms frames coalesced by Nagle
+// and delayed ACKs: several arrive in one segment, then nothing for tens of ms. The arm is
+// commanded at 31 °/s all along, which is what the check judges.
+TEST_F(RealmanSimTest, FramesThatArriveBatchedAreJudgedByTheirCommandedSpeed) {
+  constexpr int kFrames = 100;
+  constexpr int kBatch = 4;
+  const auto first = Clock::now();
+  for (int k = 0; k < kFrames; k += kBatch) {
+    std::this_thread::sleep_until(first + k * 10ms);
+    std::string batch;
+    for (int i = k; i < k + kBatch; ++i) batch += frame(canfd({0.31 * (i + 1), 0, 0, 0, 0, 0}));
+    client_->send_raw(batch);
+  }
+  std::this_thread::sleep_for(50ms);
+  const json s = state();
+  EXPECT_EQ(s["pass_through"]["accepted"], kFrames) << s["pass_through"].dump();
+  EXPECT_EQ(s["errors"], json::array());
+  EXPECT_NEAR(joints_deg()[0], 31, 1e-6);
 }
 
 TEST_F(RealmanSimTest, LowFollowLagsTheTargetBy50Ms) {
@@ -854,6 +904,7 @@ TEST(RealmanSimGenerations, SoftwareInfoHasEachGenerationsShape) {
   const json info4 = four.request(plain("get_arm_software_info"));
   EXPECT_EQ(info4["robot_controller_version"], "4.0");
   EXPECT_EQ(info4["Product_version"], "GEN72-B");
+  EXPECT_TRUE(info4["communication_info"].contains("build_time")) << "the vendor SDK refuses it without";
 
   RealmanSimProcess gen2({"--quiet", "--generation", "2", "--model", "RM65-B"});
   Connection two(gen2.port());
@@ -874,7 +925,11 @@ TEST_F(RealmanSimTest, AGripperPickAtFullSpeedTakesHalfASecondAndEndsWithABlockE
   EXPECT_EQ(client_->request(plain("get_gripper_state"))["mode"], 4) << "closing";
   const auto event = client_->next_event();
   ASSERT_TRUE(event);
-  EXPECT_EQ(*event, json({{"state", "current_trajectory_state"}, {"trajectory_state", true}, {"device", 1}}));
+  EXPECT_EQ(*event, json({{"state", "current_trajectory_state"},
+                          {"trajectory_state", true},
+                          {"device", 1},
+                          {"trajectory_connect", 0}}))
+      << "the vendor SDK refuses a completion without trajectory_connect";
   EXPECT_NEAR(std::chrono::duration<double>(Clock::now() - start).count(), 0.5, 0.06);
   const json gripper = client_->request(plain("get_gripper_state"));
   EXPECT_EQ(gripper, json({{"command", "get_gripper_state"},
@@ -931,7 +986,10 @@ TEST_F(RealmanSimTest, HandAngleMinusOneKeepsThatDegreeOfFreedom) {
             json({{"command", "set_hand_angle"}, {"set_state", true}}));
   const auto event = client_->next_event(2000ms);
   ASSERT_TRUE(event);
-  EXPECT_EQ(*event, json({{"state", "current_trajectory_state"}, {"trajectory_state", true}, {"device", 2}}));
+  EXPECT_EQ(*event, json({{"state", "current_trajectory_state"},
+                          {"trajectory_state", true},
+                          {"device", 2},
+                          {"trajectory_connect", 0}}));
   ASSERT_EQ(
       client_->request(
           {{"command", "set_hand_angle"}, {"hand_angle", {-1, -1, 0, -1, -1, 999}}, {"block", true}})["set_state"],
@@ -944,7 +1002,10 @@ TEST_F(RealmanSimTest, HandAngleMinusOneKeepsThatDegreeOfFreedom) {
 TEST_F(RealmanSimTest, HandPosturesAndSequencesAreTheDocumentedTables) {
   ASSERT_EQ(client_->request({{"command", "set_hand_posture"}, {"posture_num", 40}, {"block", true}})["set_state"],
             true);
-  ASSERT_TRUE(client_->next_event(3000ms));
+  EXPECT_EQ(client_->next_event(3000ms).value_or(json()), json({{"state", "current_trajectory_state"},
+                                                                {"trajectory_state", true},
+                                                                {"device", 2},
+                                                                {"trajectory_connect", 0}}));
   EXPECT_EQ(state()["hand"]["angles"], json({0, 0, 0, 0, 0, 0}));
   ASSERT_EQ(client_->request({{"command", "set_hand_seq"}, {"seq_num", 20}, {"block", true}})["set_state"], true);
   ASSERT_TRUE(client_->next_event(5000ms));
