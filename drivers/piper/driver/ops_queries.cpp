@@ -140,9 +140,13 @@ Result<nlohmann::json> PiperOps::gripper_params(const nlohmann::json& args) {
 Result<nlohmann::json> PiperOps::can_fps(const nlohmann::json& args) {
   if (auto error = no_arguments("can_fps", args)) return *error;
   const ArmSnapshot snapshot = driver_.snapshot();
-  return nlohmann::json{{"rx_fps", snapshot.rx_fps},         {"tx_fps", snapshot.tx_fps},
-                        {"rx_frames", snapshot.rx_frames},   {"tx_frames", snapshot.tx_frames},
-                        {"tx_dropped", snapshot.tx_dropped}, {"unknown_frames", snapshot.arm.unknown_frames},
+  return nlohmann::json{{"rx_fps", snapshot.rx_fps},
+                        {"tx_fps", snapshot.tx_fps},
+                        {"rx_frames", snapshot.rx_frames},
+                        {"tx_frames", snapshot.tx_frames},
+                        {"tx_dropped", snapshot.tx_dropped},
+                        {"unknown_frames", snapshot.arm.unknown_frames},
+                        {"implausible_frames", snapshot.arm.implausible_frames},
                         {"link", driver_.link_name_.data()}};
 }
 

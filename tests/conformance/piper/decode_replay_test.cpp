@@ -149,7 +149,7 @@ TEST(DecodeReplay, FeedbackDecodesAsTheSdkReadsIt) {
     const std::vector<std::uint8_t> data = hex_bytes(vector.at("data").get<std::string>());
     const CanMessage message = transport::classic_frame(vector.at("id").get<std::uint32_t>(), data);
     const std::optional<Frame> frame = decode(message, kSdkOptions);
-    const bool accepted = frame.has_value();
+    const bool accepted = frame.has_value() && plausible(*frame);
     const bool sdk_accepted = vector.at("accepted").get<bool>();
     const char* group = sdk_accepted ? "decode" : "abnormal filter";
     if (!sdk_accepted || !accepted) {

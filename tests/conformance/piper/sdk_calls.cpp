@@ -67,9 +67,11 @@ constexpr double kSpeedUnit = 0.001;  // 0x474 max joint speed
 constexpr double kEndUnit = 0.001;    // 0x479
 
 Frames joint_config(std::uint8_t joint, bool set_zero, bool apply_acc, int acc, bool clear_error) {
-  JointConfig config{.joint = joint, .set_zero = set_zero, .clear_error = clear_error};
-  if (apply_acc) config.max_acc_rad_s2 = acc * kAccUnit;
-  return one(encode(config));
+  return one(encode(JointConfig{.joint = joint,
+                                .set_zero = set_zero,
+                                .apply_max_acc = apply_acc,
+                                .max_acc_rad_s2 = acc * kAccUnit,
+                                .clear_error = clear_error}));
 }
 
 const std::map<std::string, std::function<Frames(const json&)>, std::less<>>& calls() {
@@ -169,6 +171,8 @@ const std::map<std::string, std::function<Frames(const json&)>, std::less<>>& ca
                                                                    .max_range_mm = u8(a, 1),
                                                                    .teaching_friction = u8(a, 2)}}));
        }},
+      {"ReqMasterArmMoveToHome",
+       [](const json& a) { return one(encode(MasterArmHomeRequest{.mode = static_cast<MasterArmHome>(u8(a, 0))})); }},
       {"JointMitCtrl",
        [](const json& a) {
          return one(encode(MitControl{.joint = integer(a, 0),
