@@ -51,7 +51,8 @@ constexpr std::array<OpSpec, 26> kOps{{
     {"can_fps", R"({}: frames per second received from and sent to the bus, and totals)"},
     {"state", R"({}: everything the arm reports: status, modes, per joint position, speed, current, effort, )"
               R"(voltage, temperatures, driver status, enable; gripper; the arm's end pose)"},
-    {"fk", R"({"joints_rad": [6 numbers]}: forward kinematics of the flange (measured joints if omitted))"},
+    {"fk", R"({"joints_rad": [6 numbers]}: forward kinematics: the flange and every link's pose, as GetFK )"
+           R"((measured joints if omitted))"},
     {"master_commands", R"({}: the last ModeCtrl, joint and gripper commands a master (leader) arm sent on the bus)"},
     {"set_joint_limits",
      R"({"joint": 1..6, "min_angle_rad", "max_angle_rad", "max_speed_rad_s"}: )"

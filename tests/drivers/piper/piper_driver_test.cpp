@@ -348,6 +348,9 @@ TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
   ASSERT_TRUE(fk);
   EXPECT_NEAR(fk.value()["flange"]["x_m"].get<double>(), 0.056128, 1e-5) << fk.value().dump();
   EXPECT_NEAR(fk.value()["flange"]["z_m"].get<double>(), 0.213266, 1e-5) << fk.value().dump();
+  ASSERT_EQ(fk.value()["links"].size(), 6U) << "every link's pose, as GetFK";
+  EXPECT_NEAR(fk.value()["links"][0]["z_m"].get<double>(), 0.123, 1e-9);  // link 1: the base's d1
+  EXPECT_EQ(fk.value()["links"][5], fk.value()["flange"]);
 }
 
 TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
