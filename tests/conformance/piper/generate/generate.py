@@ -169,7 +169,7 @@ def main():
     provenance = {
         "repository": "https://github.com/agilexrobotics/piper_sdk",
         "commit": commit,
-        "sdk_version": list(piper_sdk.version.PiperSDKVersion)[-1].value,
+        "sdk_version": sdk.interface().GetCurrentSDKVersion().value,
         "python_can": can.__version__,
         "python": sys.version.split()[0],
         "files_run": SDK_FILES,
