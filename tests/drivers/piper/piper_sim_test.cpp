@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "codec/piper_frames.hpp"
 #include "kinematics/piper_kinematics.hpp"
@@ -400,6 +402,62 @@ TEST_F(PiperSimInitialTest, MovePNearTheWristSingularityTakesTheNearestSolution)
   EXPECT_NEAR(heard_.pose.y_m, target.y_m, 1e-4);
   EXPECT_GT(heard_.joints[3], 0.0) << "J4 swung to the far solution";
   EXPECT_LT(std::abs(heard_.joints[3] - 0.8), 1.05);
+}
+
+// The vendor SDK's session against the simulator (tests/conformance/piper/sdk_sim_transcript.json,
+// recorded by tests/conformance/piper/generate/sdk_against_sim.py), replayed frame for frame: the
+// same frames bring the arm to the same joints wherever the outcome does not depend on when a
+// frame went out. The SDK stopped J2 with the e-stop once it was below 30° (30000 m°); where it
+// stops depends on that moment, so only the limit is checked there.
+TEST_F(PiperSimTest, TheSdkTranscriptReplays) {
+  std::ifstream file(ROBOTD_SOURCE_DIR "/tests/conformance/piper/sdk_sim_transcript.json");
+  ASSERT_TRUE(file) << "sdk_sim_transcript.json is missing";
+  const nlohmann::json transcript = nlohmann::json::parse(file);
+  constexpr double kMilliDeg = std::numbers::pi / 180000;
+  constexpr double kJointToleranceRad = 50 * kMilliDeg;  // 0.05°: the IK's own tolerance, then the wire
+  const auto at_rest = [this] {
+    return heard_.status.motion_status == 0 && heard_.joint_pairs == 0x07 &&
+           std::all_of(heard_.high.begin(), heard_.high.end(),
+                       [](const HighSpeedInfo& h) { return h.speed_rad_s == 0; });
+  };
+  for (const nlohmann::json& step : transcript.at("steps")) {
+    const std::string name = step.at("step");
+    SCOPED_TRACE(name);
+    for (const nlohmann::json& frame : step.at("sent")) {
+      std::vector<std::uint8_t> bytes;
+      const std::string hex = frame.at("data");
+      for (std::size_t at = 0; at + 1 < hex.size(); at += 3) {  // "01 02 …"
+        bytes.push_back(static_cast<std::uint8_t>(std::stoi(hex.substr(at, 2), nullptr, 16)));
+      }
+      send_message(transport::classic_frame(frame.at("id").get<std::uint32_t>(), bytes));
+    }
+    if (name == "move p 20 mm") continue;  // arrives in the next step
+    if (name == "high-follow j2 down") {
+      ASSERT_TRUE(wait_for([this, kMilliDeg] { return heard_.joints[1] < 30000 * kMilliDeg; }, 2s));
+      continue;
+    }
+    if (name == "enable" || name == "enable again") {
+      ASSERT_TRUE(wait_for([this] { return heard_.all_enabled(); }, 1s));
+      continue;
+    }
+    if (name == "mit") {  // MIT dynamics: where joint 6 is at a given moment depends on timing
+      EXPECT_TRUE(wait_for([this] { return std::abs(heard_.joints[5] - 0.5) < 0.01; }, 2s)) << heard_.joints[5];
+      continue;
+    }
+    listen_for(30ms);
+    heard_.joint_pairs = 0;
+    ASSERT_TRUE(wait_for(at_rest, 5s));
+    EXPECT_EQ(heard_.status.arm_status, step.at("status").at("arm_status").get<int>());
+    if (name == "e-stop" || name == "resume") {
+      EXPECT_GE(heard_.joints[1], -kWireRad) << "J2 below its lower limit";
+      EXPECT_EQ(heard_.status.angle_limit_bits, 0);
+      continue;
+    }
+    for (std::size_t j = 0; j < kArmJoints; ++j) {
+      EXPECT_NEAR(heard_.joints[j], step.at("joints_mdeg").at(j).get<double>() * kMilliDeg, kJointToleranceRad)
+          << "joint " << j + 1;
+    }
+  }
 }
 
 TEST_F(PiperSimInitialTest, MovePReachesThePose) {
