@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Drives robotd-piper-sim with the vendor's PiPER SDK over python-can (standin_bus.py) and
 records what happened: each step's SDK calls with the frames they put on the bus, and what the
-SDK's getters then reported. The checks at the end are the ones the PiPER simulator tests keep
-in CI (tests/drivers/piper/piper_sim_test.cpp); timings make the transcript evidence, not a
-byte-exact replay.
+SDK's getters then reported. CI replays the frames against the simulator
+(tests/drivers/piper/piper_sim_test.cpp, TheSdkTranscriptReplays) and keeps the checks at the
+end as simulator tests.
 
 usage: /usr/bin/python3 sdk_against_sim.py --sdk PIPER_SDK_CHECKOUT --sim build/bin/robotd-piper-sim
                                            [--out tests/conformance/piper/sdk_sim_transcript.json]
