@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -36,6 +37,21 @@ constexpr std::uint8_t kQueryAcc = 0x02;
 constexpr std::uint8_t kPayloadUnset = 0x03;  // 0x477 byte 4 when no payload is set (SDK default)
 constexpr std::uint8_t kZeroSetDone = 0x01;   // 0x476 byte 1
 constexpr std::size_t kFrameBytes = 8;
+constexpr std::uint8_t kMasterHomeRequest = 0x01;  // 0x191 byte 0
+
+/// 0x191 bytes 1 and 2 for each mode (SDK ReqMasterArmMoveToHome).
+std::array<std::uint8_t, 2> master_home_bytes(MasterArmHome mode) {
+  switch (mode) {
+    case MasterArmHome::kRestoreLinkage:
+      return {0x00, 0x00};
+    case MasterArmHome::kLeaderToZero:
+      return {0x01, 0x01};
+    case MasterArmHome::kBothToZero:
+      return {0x00, 0x01};
+  }
+  throw std::invalid_argument("0x191 master-arm home mode " + std::to_string(static_cast<int>(mode)) +
+                              " is not one of 0 (restore linkage), 1 (leader to zero), 2 (both to zero)");
+}
 
 constexpr wire::MitRange kMitPosition{.min = -12.5, .max = 12.5, .bits = 16};
 constexpr wire::MitRange kMitVelocity{.min = -45.0, .max = 45.0, .bits = 12};
@@ -69,18 +85,17 @@ double from_deci_degrees(std::int16_t counts) { return counts / wire::kDeciDegPe
 std::uint16_t unsigned_counts(double value, double unit) { return saturate<std::uint16_t>(value / unit); }
 std::int16_t signed_counts(double value, double unit) { return saturate<std::int16_t>(value / unit); }
 
-// Fields with the 0x7FFF "leave unchanged" sentinel: a present value stops one count short of it,
-// so that saturation never turns a value into "unchanged".
+// Fields with the 0x7FFF "leave unchanged" sentinel. A present value uses the whole field, as the
+// SDK sends it (EndSpdAndAccParamSet 65535 goes out as FF FF).
 constexpr auto kUnchangedSigned = static_cast<std::int16_t>(kUnchanged);
 
 std::uint16_t unsigned_or_unchanged(const std::optional<double>& value, double unit) {
   if (!value) return kUnchanged;
-  return saturate<std::uint16_t>(*value / unit, 0, kUnchanged - 1);
+  return unsigned_counts(*value, unit);
 }
 std::int16_t deci_degrees_or_unchanged(const std::optional<double>& rad) {
   if (!rad) return kUnchangedSigned;
-  return saturate<std::int16_t>(*rad * wire::kDeciDegPerRad, std::numeric_limits<std::int16_t>::lowest(),
-                                kUnchangedSigned - 1);
+  return deci_degrees(*rad);
 }
 std::optional<double> unless_unchanged(std::uint16_t counts, double unit) {
   if (counts == kUnchanged) return std::nullopt;
@@ -95,7 +110,13 @@ std::uint8_t move_mode_code(MoveMode mode, MitLayout layout) {
   if (mode != MoveMode::kMit) return static_cast<std::uint8_t>(mode);
   return layout == MitLayout::kTorque12 ? kMitCode12 : kMitCode8;
 }
-MoveMode move_mode_of(std::uint8_t code) { return code == kMitCode12 ? MoveMode::kMit : static_cast<MoveMode>(code); }
+/// The SDK 0.6.1 reads 0x04 as MIT and 0x06 as unknown; firmware from S-V1.8-8 moved MIT to 0x06.
+MoveMode move_mode_of(std::uint8_t code, MitLayout layout) {
+  const std::uint8_t mit_code = layout == MitLayout::kTorque12 ? kMitCode12 : kMitCode8;
+  if (code == mit_code) return MoveMode::kMit;
+  if (code == kMitCode8 || code > static_cast<std::uint8_t>(MoveMode::kCpv)) return MoveMode::kUnknown;
+  return static_cast<MoveMode>(code);
+}
 
 std::uint8_t mit_crc(const Payload& data) {
   std::uint8_t crc = 0;
@@ -201,10 +222,10 @@ std::optional<Frame> decode_motion_control(const CanMessage& message, const Code
                        .crc16 = get_u16(data, 6)};
 }
 
-std::optional<Frame> decode_mode_control(const CanMessage& message, const CodecOptions& /*options*/) {
+std::optional<Frame> decode_mode_control(const CanMessage& message, const CodecOptions& options) {
   const Payload& data = message.data;
   return ModeControl{.ctrl_mode = static_cast<ControlMode>(data[0]),
-                     .move_mode = move_mode_of(data[1]),
+                     .move_mode = move_mode_of(data[1], options.mit_layout),
                      .speed_percent = data[2],
                      .mit = data[3] == kMitFlag,
                      .residence_time_s = data[4],
@@ -254,6 +275,17 @@ std::optional<Frame> decode_master_slave(const CanMessage& message, const CodecO
       .linkage = data[0], .feedback_offset = data[1], .control_offset = data[2], .linkage_offset = data[3]};
 }
 
+std::optional<Frame> decode_master_arm_home(const CanMessage& message, const CodecOptions& /*options*/) {
+  const Payload& data = message.data;
+  if (data[0] != kMasterHomeRequest) return std::nullopt;
+  for (const MasterArmHome mode :
+       {MasterArmHome::kRestoreLinkage, MasterArmHome::kLeaderToZero, MasterArmHome::kBothToZero}) {
+    const auto bytes = master_home_bytes(mode);
+    if (data[1] == bytes[0] && data[2] == bytes[1]) return MasterArmHomeRequest{.mode = mode};
+  }
+  return std::nullopt;
+}
+
 std::optional<Frame> decode_motor_enable(const CanMessage& message, const CodecOptions& /*options*/) {
   return MotorEnable{.motor = message.data[0], .enable = message.data[1] == kMotorOn};
 }
@@ -280,9 +312,11 @@ std::optional<Frame> decode_joint_limit_set(const CanMessage& message, const Cod
 
 std::optional<Frame> decode_joint_config(const CanMessage& message, const CodecOptions& options) {
   const Payload& data = message.data;
-  JointConfig config{.joint = data[0], .set_zero = data[1] == kMagic, .clear_error = data[5] == kMagic};
-  if (data[2] == kMagic) config.max_acc_rad_s2 = unless_unchanged(get_u16(data, 3), options.max_acc_unit_rad_s2);
-  return config;
+  return JointConfig{.joint = data[0],
+                     .set_zero = data[1] == kMagic,
+                     .apply_max_acc = data[2] == kMagic,
+                     .max_acc_rad_s2 = get_u16(data, 3) * options.max_acc_unit_rad_s2,
+                     .clear_error = data[5] == kMagic};
 }
 
 std::optional<Frame> decode_set_ack(const CanMessage& message, const CodecOptions& /*options*/) {
@@ -333,11 +367,11 @@ std::optional<Frame> decode_firmware(const CanMessage& message, const CodecOptio
   return chunk;
 }
 
-std::optional<Frame> decode_arm_status(const CanMessage& message, const CodecOptions& /*options*/) {
+std::optional<Frame> decode_arm_status(const CanMessage& message, const CodecOptions& options) {
   const Payload& data = message.data;
   return ArmStatus{.ctrl_mode = static_cast<ControlMode>(data[0]),
                    .arm_status = data[1],
-                   .mode_feed = move_mode_of(data[2]),
+                   .mode_feed = move_mode_of(data[2], options.mit_layout),
                    .teach_status = data[3],
                    .motion_status = data[4],
                    .trajectory_index = data[5],
@@ -397,6 +431,7 @@ constexpr std::array kDecoders{
     FrameDecoder{can_id::kGripperControl, can_id::kGripperControl, 8, decode_gripper_control},
     FrameDecoder{can_id::kMitControl, can_id::kMitControl + kJointIds, 8, decode_mit_control},
     FrameDecoder{can_id::kMasterSlaveConfig, can_id::kMasterSlaveConfig, 4, decode_master_slave},
+    FrameDecoder{can_id::kMasterArmHome, can_id::kMasterArmHome, 3, decode_master_arm_home},
     FrameDecoder{can_id::kMotorEnable, can_id::kMotorEnable, 2, decode_motor_enable},
     FrameDecoder{can_id::kJointLimitQuery, can_id::kJointLimitQuery, 2, decode_joint_limit_query},
     FrameDecoder{can_id::kJointLimitReply, can_id::kJointLimitReply, 7, decode_joint_limit_reply},
@@ -483,7 +518,11 @@ CanMessage encode(const GripperControl& frame, const CodecOptions& /*options*/) 
 }
 
 CanMessage encode(const MitControl& frame, const CodecOptions& options) {
-  CanMessage message = message_for(indexed_id(can_id::kMitControl, frame.joint - 1, kArmJoints));
+  if (frame.joint < 1 || frame.joint > kArmJoints) {
+    throw std::invalid_argument("MIT joint " + std::to_string(frame.joint) +
+                                " does not exist: joints are 1 … 6 (frames 0x15A … 0x15F)");
+  }
+  CanMessage message = message_for(can_id::kMitControl + static_cast<std::uint32_t>(frame.joint - 1));
   const bool wide = options.mit_layout == MitLayout::kTorque12;
   const std::uint32_t position = wire::mit_quantise(frame.position_rad, kMitPosition);
   const std::uint32_t velocity = wire::mit_quantise(frame.velocity_rad_s, kMitVelocity);
@@ -517,6 +556,15 @@ CanMessage encode(const MasterSlaveConfig& frame, const CodecOptions& /*options*
   return message;
 }
 
+CanMessage encode(const MasterArmHomeRequest& frame, const CodecOptions& /*options*/) {
+  const auto bytes = master_home_bytes(frame.mode);
+  CanMessage message = message_for(can_id::kMasterArmHome);
+  message.data[0] = kMasterHomeRequest;
+  message.data[1] = bytes[0];
+  message.data[2] = bytes[1];
+  return message;
+}
+
 CanMessage encode(const MotorEnable& frame, const CodecOptions& /*options*/) {
   CanMessage message = message_for(can_id::kMotorEnable);
   message.data[0] = frame.motor;
@@ -544,8 +592,8 @@ CanMessage encode(const JointConfig& frame, const CodecOptions& options) {
   CanMessage message = message_for(can_id::kJointConfig);
   message.data[0] = frame.joint;
   message.data[1] = flag(frame.set_zero, kMagic);
-  message.data[2] = flag(frame.max_acc_rad_s2.has_value(), kMagic);
-  put_u16(message.data, 3, unsigned_or_unchanged(frame.max_acc_rad_s2, options.max_acc_unit_rad_s2));
+  message.data[2] = flag(frame.apply_max_acc, kMagic);
+  put_u16(message.data, 3, unsigned_counts(frame.max_acc_rad_s2, options.max_acc_unit_rad_s2));
   message.data[5] = flag(frame.clear_error, kMagic);
   return message;
 }
@@ -716,7 +764,7 @@ std::array<CanMessage, 3> encode_joint_feedback(const std::array<double, kArmJoi
 std::optional<std::string> software_version(const std::string& firmware_text) {
   constexpr std::size_t kVersionLength = 8;  // "S-V1.8-2"; the SDK takes 8 characters too
   const std::size_t at = firmware_text.find("S-V");
-  if (at == std::string::npos || firmware_text.size() - at < kVersionLength) return std::nullopt;
+  if (at == std::string::npos) return std::nullopt;
   // The bytes come from the arm and end up in JSON and logs: keep the printable ones.
   const std::string_view version = std::string_view(firmware_text).substr(at, kVersionLength);
   const auto end = std::find_if(version.begin(), version.end(), [](char c) { return c < 0x20 || c > 0x7E; });

@@ -30,6 +30,7 @@ inline constexpr std::uint32_t kJointTarget = 0x155;      // … 0x157
 inline constexpr std::uint32_t kMoveCPoint = 0x158;       //
 inline constexpr std::uint32_t kGripperControl = 0x159;   //
 inline constexpr std::uint32_t kMitControl = 0x15A;       // … 0x15F, joint 1 … 6
+inline constexpr std::uint32_t kMasterArmHome = 0x191;    // a leader arm (and its follower) to zero
 inline constexpr std::uint32_t kArmStatus = 0x2A1;        //
 inline constexpr std::uint32_t kEndPoseFeedback = 0x2A2;  // … 0x2A4
 inline constexpr std::uint32_t kJointFeedback = 0x2A5;    // … 0x2A7
@@ -89,6 +90,7 @@ enum class MoveMode : std::uint8_t {  // 0x151 byte 1, 0x2A1 byte 2; kMit is 0x0
   kC = 0x03,
   kMit = 0x04,
   kCpv = 0x05,
+  kUnknown = 0xFF,  // decoded only: a code the configured MIT layout does not define (as the SDK)
 };
 
 enum class EmergencyStop : std::uint8_t { kNone = 0x00, kStop = 0x01, kResume = 0x02 };
@@ -156,7 +158,7 @@ struct GripperControl {  // 0x159 (also sent by a master arm)
 
 /// One joint's MIT command: torque = kp·(p − q) + kd·(v − dq) + t. `torque` is in wire units
 /// (±8 for kTorque8Crc; N·m ±16 for kTorque12); the driver applies the firmware's scale.
-/// Values outside the ranges below saturate at the range ends.
+/// Values outside the ranges below saturate at the range ends; a joint outside 1 … 6 is refused.
 struct MitControl {           // 0x159 + joint
   int joint = 1;              // 1 … 6
   double position_rad = 0;    // ±12.5, 16 bit
@@ -183,7 +185,8 @@ struct JointLimitQuery {      // 0x472
   bool acceleration = false;  // false: angle limits + max speed (→ 0x473); true: max acc (→ 0x47C)
 };
 
-/// 0x474. nullopt fields go out as 0x7FFF (unchanged).
+/// 0x474. nullopt fields go out as 0x7FFF (unchanged); present values use the whole field, as
+/// in the SDK (a present value of 0x7FFF counts reads as "unchanged" there too).
 struct JointLimitSet {
   std::uint8_t joint = 1;
   std::optional<double> max_angle_rad{};  // 0.1° on the wire
@@ -191,10 +194,13 @@ struct JointLimitSet {
   std::optional<double> max_speed_rad_s{};  // CodecOptions::max_speed_unit_rad_s
 };
 
+/// Bytes 3–4 always carry max_acc_rad_s2, as the SDK sends its max_joint_acc whatever the flag
+/// says; byte 2 (0xAE) tells the arm to apply it.
 struct JointConfig {                // 0x475
   std::uint8_t joint = kAllJoints;  // 1 … 6, 7 all
   bool set_zero = false;
-  std::optional<double> max_acc_rad_s2{};  // bytes 2–4; nullopt: byte 2 = 0, bytes 3–4 = 0x7FFF
+  bool apply_max_acc = false;   // byte 2 = 0xAE
+  double max_acc_rad_s2 = 5.0;  // bytes 3–4; the SDK's default 500 counts of 0.01 rad/s²
   bool clear_error = false;
 };
 
@@ -206,7 +212,8 @@ struct ParamEnquiry {  // 0x477
   std::optional<std::uint8_t> payload{};  // 0 empty, 1 half, 2 full; nullopt: byte 3 = 0, byte 4 = 0x03 (SDK default)
 };
 
-/// 0x478 (reply) and 0x479 (set); in a set, nullopt fields go out as 0x7FFF.
+/// 0x478 (reply) and 0x479 (set): uint16 in 0.001 units. In a set, nullopt fields go out as
+/// 0x7FFF and present values use the whole field (65.535 → FF FF), as in the SDK.
 struct EndVelAcc {
   std::optional<double> max_linear_velocity_m_s{};
   std::optional<double> max_angular_velocity_rad_s{};
@@ -237,6 +244,17 @@ struct GripperParamSet {  // 0x47D
 };
 struct GripperParamReply {  // 0x47E
   GripperParams params;
+};
+
+/// 0x191: what a leader (master) arm is asked to do, byte for byte the SDK's
+/// ReqMasterArmMoveToHome modes 0, 1, 2.
+enum class MasterArmHome : std::uint8_t {
+  kRestoreLinkage = 0,  // 01 00 00: back to leader/follower operation
+  kLeaderToZero = 1,    // 01 01 01: the leader arm moves to zero
+  kBothToZero = 2,      // 01 00 01: leader and follower move to zero together
+};
+struct MasterArmHomeRequest {  // 0x191
+  MasterArmHome mode = MasterArmHome::kRestoreLinkage;
 };
 
 /// 0x4AF both ways: the request is `01 00 …`; the reply is a burst of ASCII chunks.
@@ -313,10 +331,10 @@ struct JointAccReply {  // 0x47C
 
 using Frame =
     std::variant<MotionControl, ModeControl, EndPoseTargetPart, JointTargetPair, MoveCPoint, GripperControl, MitControl,
-                 MasterSlaveConfig, MotorEnable, JointLimitQuery, JointLimitSet, JointConfig, ParamEnquiry,
-                 EndVelAccSet, CrashProtectionSet, GripperParamSet, FirmwareChunk, ArmStatus, EndPoseFeedbackPart,
-                 JointFeedbackPair, GripperFeedback, HighSpeedInfo, LowSpeedInfo, JointLimitReply, SetAck,
-                 EndVelAccReply, CrashProtectionReply, JointAccReply, GripperParamReply>;
+                 MasterSlaveConfig, MasterArmHomeRequest, MotorEnable, JointLimitQuery, JointLimitSet, JointConfig,
+                 ParamEnquiry, EndVelAccSet, CrashProtectionSet, GripperParamSet, FirmwareChunk, ArmStatus,
+                 EndPoseFeedbackPart, JointFeedbackPair, GripperFeedback, HighSpeedInfo, LowSpeedInfo, JointLimitReply,
+                 SetAck, EndVelAccReply, CrashProtectionReply, JointAccReply, GripperParamReply>;
 
 /// Every frame type has `CanMessage encode(const T&, const CodecOptions& = {})`: 8 data bytes,
 /// standard 11-bit id, values outside their wire range saturated (never wrapped).
@@ -326,8 +344,11 @@ CanMessage encode(const EndPoseTargetPart& frame, const CodecOptions& options = 
 CanMessage encode(const JointTargetPair& frame, const CodecOptions& options = {});
 CanMessage encode(const MoveCPoint& frame, const CodecOptions& options = {});
 CanMessage encode(const GripperControl& frame, const CodecOptions& options = {});
+/// Throws std::invalid_argument for a joint outside 1 … 6 (there is no frame for it).
 CanMessage encode(const MitControl& frame, const CodecOptions& options = {});
 CanMessage encode(const MasterSlaveConfig& frame, const CodecOptions& options = {});
+/// Throws std::invalid_argument for a mode that is not one of MasterArmHome's.
+CanMessage encode(const MasterArmHomeRequest& frame, const CodecOptions& options = {});
 CanMessage encode(const MotorEnable& frame, const CodecOptions& options = {});
 CanMessage encode(const JointLimitQuery& frame, const CodecOptions& options = {});
 CanMessage encode(const JointLimitSet& frame, const CodecOptions& options = {});
@@ -355,6 +376,12 @@ CanMessage encode(const GripperParamReply& frame, const CodecOptions& options = 
 /// payloads are read up to what the frame needs. Never throws, never allocates.
 std::optional<Frame> decode(const CanMessage& message, const CodecOptions& options = {});
 
+/// False for feedback that cannot be real, which the SDK drops (its abnormal-data filter, on by
+/// default): an end pose beyond 1 m on an axis (|x|, |y|, |z| > 1e6 µm) or an angle beyond
+/// 361° (0x2A2–0x2A4), a joint beyond 3000° (|q| > 3 000 000 m°, 0x2A5–0x2A7), a gripper stroke
+/// beyond 150 mm (0x2A8). True for every other frame. No allocation.
+bool plausible(const Frame& frame) noexcept;
+
 /// The firmware request (0x4AF `01 00 00 00 00 00 00 00`), which decodes as a FirmwareChunk too.
 CanMessage firmware_request();
 bool is_firmware_request(const CanMessage& message);
@@ -365,8 +392,9 @@ std::array<CanMessage, 3> encode_joint_targets(const std::array<double, kArmJoin
 std::array<CanMessage, 3> encode_end_pose_feedback(const CartesianPose& pose);
 std::array<CanMessage, 3> encode_joint_feedback(const std::array<double, kArmJoints>& positions_rad);
 
-/// Extracts the software version ("S-V1.8-2") from the concatenated 0x4AF reply text, cut at
-/// the first character that is not printable ASCII; nullopt if the text holds none yet.
+/// Extracts the software version ("S-V1.8-2") from the concatenated 0x4AF reply text as the SDK
+/// does: the 8 characters from "S-V", or fewer while the rest has not arrived; cut at the first
+/// character that is not printable ASCII. nullopt while the text holds no "S-V".
 std::optional<std::string> software_version(const std::string& firmware_text);
 /// The MIT layout a software version implies: kTorque12 from S-V1.8-8 on.
 MitLayout mit_layout_for(const std::string& software_version);

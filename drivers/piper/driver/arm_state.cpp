@@ -59,6 +59,10 @@ bool ArmState::all_enabled() const {
 }
 
 bool apply_frame(ArmState& state, const Frame& frame, std::int64_t now_ns) noexcept {
+  if (!plausible(frame)) {
+    ++state.implausible_frames;
+    return false;
+  }
   bool joints_complete = false;
   std::visit(
       [&](const auto& value) {

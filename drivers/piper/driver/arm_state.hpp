@@ -41,13 +41,15 @@ struct ArmState {
   bool master_seen = false;
   std::int64_t last_status_ns = 0;
   std::int64_t last_joints_ns = 0;
-  std::uint64_t frames = 0;          // decoded frames from the arm
-  std::uint64_t unknown_frames = 0;  // ids the codec does not know or frames it rejects
+  std::uint64_t frames = 0;              // decoded frames from the arm
+  std::uint64_t unknown_frames = 0;      // ids the codec does not know or frames it rejects
+  std::uint64_t implausible_frames = 0;  // feedback with impossible values, dropped as the SDK does
 
   bool all_enabled() const;
 };
 
-/// Applies one decoded arm frame. Returns true when it completed a set of joint positions.
+/// Applies one decoded arm frame; drops (and counts) one with impossible values (plausible()).
+/// Returns true when it completed a set of joint positions.
 bool apply_frame(ArmState& state, const Frame& frame, std::int64_t now_ns) noexcept;
 
 /// A fault the arm reports (status code, joint communication errors, driver fault bits,

@@ -36,6 +36,9 @@ driver::Diagnostics PiperDriver::diagnostics() const {
     values.emplace_back("joint_errors", bits.data());
   }
   if (!driver_faults.empty()) values.emplace_back("driver_faults", driver_faults);
+  if (arm.implausible_frames != 0) {
+    values.emplace_back("implausible_frames", std::to_string(arm.implausible_frames) + " dropped (impossible values)");
+  }
   if (arm.joints[0].low_speed_seen) {
     // The hottest motor and driver and the lowest bus voltage: enough to spot trouble at a glance;
     // the state op has every joint's values.

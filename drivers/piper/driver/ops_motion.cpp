@@ -1,5 +1,5 @@
 // Ops that move the arm or change its mode outside a session: end_pose, move_c, mode, gripper,
-// enable / disable, master_slave.
+// enable / disable, master_slave, master_home.
 #include <chrono>
 #include <thread>
 
@@ -255,6 +255,21 @@ Result<nlohmann::json> PiperOps::master_slave(const nlohmann::json& args) {
                         {"linkage_offset", config.linkage_offset},
                         {"note", role == "master" ? "a master arm sends no feedback: robotd will report the link lost"
                                                   : "the arm sends feedback as a follower"}};
+}
+
+Result<nlohmann::json> PiperOps::master_home(const nlohmann::json& args) {
+  OpArguments arguments("master_home", args);
+  JsonReader& reader = arguments.reader();
+  reader.require("mode", R"("restore_linkage", "leader_to_zero" or "both_to_zero")");
+  const std::string mode =
+      reader.string_or("mode", "restore_linkage", {"restore_linkage", "leader_to_zero", "both_to_zero"});
+  if (auto error = arguments.finish()) return *error;
+  const MasterArmHome request = mode == "leader_to_zero" ? MasterArmHome::kLeaderToZero
+                                : mode == "both_to_zero" ? MasterArmHome::kBothToZero
+                                                         : MasterArmHome::kRestoreLinkage;
+  if (auto refused = take_arm_for("master_home")) return *refused;
+  if (auto failed = send_all(std::array{encode(MasterArmHomeRequest{.mode = request}, driver_.codec_)})) return *failed;
+  return nlohmann::json{{"sent", "ReqMasterArmMoveToHome"}, {"mode", mode}};
 }
 
 }  // namespace robotd::piper

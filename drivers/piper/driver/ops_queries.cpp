@@ -140,9 +140,13 @@ Result<nlohmann::json> PiperOps::gripper_params(const nlohmann::json& args) {
 Result<nlohmann::json> PiperOps::can_fps(const nlohmann::json& args) {
   if (auto error = no_arguments("can_fps", args)) return *error;
   const ArmSnapshot snapshot = driver_.snapshot();
-  return nlohmann::json{{"rx_fps", snapshot.rx_fps},         {"tx_fps", snapshot.tx_fps},
-                        {"rx_frames", snapshot.rx_frames},   {"tx_frames", snapshot.tx_frames},
-                        {"tx_dropped", snapshot.tx_dropped}, {"unknown_frames", snapshot.arm.unknown_frames},
+  return nlohmann::json{{"rx_fps", snapshot.rx_fps},
+                        {"tx_fps", snapshot.tx_fps},
+                        {"rx_frames", snapshot.rx_frames},
+                        {"tx_frames", snapshot.tx_frames},
+                        {"tx_dropped", snapshot.tx_dropped},
+                        {"unknown_frames", snapshot.arm.unknown_frames},
+                        {"implausible_frames", snapshot.arm.implausible_frames},
                         {"link", driver_.link_name_.data()}};
 }
 
@@ -184,10 +188,13 @@ Result<nlohmann::json> PiperOps::fk(const nlohmann::json& args) {
   std::array<double, kArmJoints> q{};
   const ArmSnapshot snapshot = driver_.snapshot();
   for (std::size_t j = 0; j < kArmJoints; ++j) q[j] = given ? (*given)[j] : snapshot.arm.joints[j].position_rad;
+  nlohmann::json links = nlohmann::json::array();  // links 1 … 6, as the SDK's GetFK
+  for (const CartesianPose& link : link_poses(q, driver_.params_.dh)) links.push_back(to_json(link));
   return nlohmann::json{{"joints_rad", q},
                         {"source", given ? "given" : "measured"},
                         {"dh", driver_.params_.dh == DhVariant::kOffset ? "offset" : "plain"},
-                        {"flange", to_json(forward_kinematics(q, driver_.params_.dh))}};
+                        {"flange", to_json(forward_kinematics(q, driver_.params_.dh))},
+                        {"links", links}};
 }
 
 Result<nlohmann::json> PiperOps::master_commands(const nlohmann::json& args) {

@@ -64,9 +64,11 @@ Result<nlohmann::json> PiperOps::joint_config(const nlohmann::json& args) {
   const auto joint = arguments.joint(/*allow_all=*/true);
   JointConfig config;
   config.set_zero = reader.boolean_or("set_zero", false);
-  config.max_acc_rad_s2 = reader.number("max_acc_rad_s2", NumberRange{.min = 0, .max = 5});
+  const auto acc = reader.number("max_acc_rad_s2", NumberRange{.min = 0, .max = 5});
+  config.apply_max_acc = acc.has_value();
+  if (acc) config.max_acc_rad_s2 = *acc;
   config.clear_error = reader.boolean_or("clear_error", false);
-  if (!config.set_zero && !config.max_acc_rad_s2 && !config.clear_error) {
+  if (!config.set_zero && !acc && !config.clear_error) {
     reader.error("set_zero", "give at least one of set_zero, max_acc_rad_s2, clear_error");
   }
   if (auto error = arguments.finish()) return *error;
@@ -89,8 +91,9 @@ Result<nlohmann::json> PiperOps::set_max_acc(const nlohmann::json& args) {
   arguments.reader().require("max_acc_rad_s2", "an acceleration in rad/s², 0..5");
   const auto acc = arguments.reader().number("max_acc_rad_s2", NumberRange{.min = 0, .max = 5});
   if (auto error = arguments.finish()) return *error;
-  auto acked = driver_.set_and_await_ack(encode(JointConfig{.joint = *joint, .max_acc_rad_s2 = acc}, driver_.codec_),
-                                         kAckJointConfig);
+  auto acked = driver_.set_and_await_ack(
+      encode(JointConfig{.joint = *joint, .apply_max_acc = true, .max_acc_rad_s2 = *acc}, driver_.codec_),
+      kAckJointConfig);
   if (!acked) return acked.error();
   return nlohmann::json{{"acknowledged", "JointMaxAccConfig"}, {"joint", joint_json(*joint)}, {"max_acc_rad_s2", *acc}};
 }

@@ -14,7 +14,7 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 25> kOps{{
+constexpr std::array<OpSpec, 26> kOps{{
     {"end_pose",
      R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "motion": "p"|"l", "speed_percent": 1..100}: )"
      R"(move the flange to a pose with the arm's planner, MOVE P (joint space) or MOVE L (straight line))",
@@ -38,6 +38,10 @@ constexpr std::array<OpSpec, 25> kOps{{
      R"({"role": "master"|"slave", "feedback_offset": 0|16|32, "control_offset": 0|16|32, )"
      R"("linkage_offset": 0|16|32}: MasterSlaveConfig (0x470))",
      driver::kNeedsFreeMotors},
+    {"master_home",
+     R"({"mode": "restore_linkage"|"leader_to_zero"|"both_to_zero"}: ReqMasterArmMoveToHome (0x191): )"
+     R"(a leader (master) arm, or leader and follower, move to zero; restore_linkage resumes following)",
+     driver::kNeedsFreeMotors},
     {"limits", R"({}: per joint angle limits (rad) and max speed (rad/s) the arm holds (0x472 → 0x473))"},
     {"acc_limits", R"({}: per joint max acceleration (rad/s²) the arm holds (0x472 → 0x47C))"},
     {"firmware", R"({}: the firmware information text and software version (0x4AF))"},
@@ -47,7 +51,8 @@ constexpr std::array<OpSpec, 25> kOps{{
     {"can_fps", R"({}: frames per second received from and sent to the bus, and totals)"},
     {"state", R"({}: everything the arm reports: status, modes, per joint position, speed, current, effort, )"
               R"(voltage, temperatures, driver status, enable; gripper; the arm's end pose)"},
-    {"fk", R"({"joints_rad": [6 numbers]}: forward kinematics of the flange (measured joints if omitted))"},
+    {"fk", R"({"joints_rad": [6 numbers]}: forward kinematics: the flange and every link's pose, as GetFK )"
+           R"((measured joints if omitted))"},
     {"master_commands", R"({}: the last ModeCtrl, joint and gripper commands a master (leader) arm sent on the bus)"},
     {"set_joint_limits",
      R"({"joint": 1..6, "min_angle_rad", "max_angle_rad", "max_speed_rad_s"}: )"
@@ -135,6 +140,7 @@ Result<nlohmann::json> PiperOps::call(const std::string& op, const nlohmann::jso
     if (op == "enable") return enable(args, true);
     if (op == "disable") return enable(args, false);
     if (op == "master_slave") return master_slave(args);
+    if (op == "master_home") return master_home(args);
     if (op == "limits") return limits(args);
     if (op == "acc_limits") return acc_limits(args);
     if (op == "firmware") return firmware(args);

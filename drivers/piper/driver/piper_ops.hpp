@@ -43,6 +43,7 @@ class PiperOps {
   Result<nlohmann::json> gripper(const nlohmann::json& args);
   Result<nlohmann::json> enable(const nlohmann::json& args, bool on);
   Result<nlohmann::json> master_slave(const nlohmann::json& args);
+  Result<nlohmann::json> master_home(const nlohmann::json& args);
   /// Error unless the arm is connected and no session streams to it (robotd runs the ops that
   /// need free motors only then, but the loop may still be ending a session released just before).
   std::optional<Error> check_no_session_streams(std::string_view op);

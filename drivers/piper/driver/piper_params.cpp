@@ -145,7 +145,8 @@ void read_codec_options(JsonReader& reader, CodecOptions& codec) {
 void read_firmware(JsonReader& reader, PiperParams& out) {
   out.firmware = reader.string_or("firmware", out.firmware);
   if (out.firmware == "auto") return;
-  if (!software_version(out.firmware)) {
+  constexpr std::size_t kVersionLength = 8;  // "S-V1.8-2"
+  if (out.firmware.size() != kVersionLength || software_version(out.firmware) != out.firmware) {
     reader.error("firmware",
                  "expected \"auto\" or a software version such as \"S-V1.8-2\", got \"" + out.firmware + "\"");
     return;

@@ -21,6 +21,11 @@ enum class DhVariant : std::uint8_t {
 /// The flange in the base frame.
 Eigen::Isometry3d flange_transform(const std::array<double, kArmJoints>& q_rad, DhVariant variant) noexcept;
 
+/// The pose of every link (joint i's frame for links 1 … 6; link 6 is the flange) in the base
+/// frame, as the SDK's GetFK / CalFK reports them.
+std::array<CartesianPose, kArmJoints> link_poses(const std::array<double, kArmJoints>& q_rad,
+                                                 DhVariant variant) noexcept;
+
 /// The flange pose as the arm reports it on 0x2A2–0x2A4.
 CartesianPose forward_kinematics(const std::array<double, kArmJoints>& q_rad, DhVariant variant) noexcept;
 

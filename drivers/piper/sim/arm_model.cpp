@@ -176,7 +176,7 @@ std::optional<bool> ArmModel::joint_config(const JointConfig& frame) {
   for (int number = 1; number <= kArmJoints; ++number) {
     if (!all && frame.joint != number) continue;
     SimJoint& joint = joints_[index_of(number)];
-    if (frame.max_acc_rad_s2) settings_.joints[index_of(number)].max_acc_rad_s2 = *frame.max_acc_rad_s2;
+    if (frame.apply_max_acc) settings_.joints[index_of(number)].max_acc_rad_s2 = frame.max_acc_rad_s2;
     if (frame.clear_error) {
       joint.injected_driver_bits = 0;
       joint.comm_error = false;
@@ -271,8 +271,14 @@ void ArmModel::step_joint(std::size_t index, double dt_s) {
   const double previous_velocity = joint.velocity_rad_s;
   ProfileState state{.position_rad = joint.position_rad, .velocity_rad_s = joint.velocity_rad_s};
   if (estop_) {
-    // Quick damped stop: brake to rest and hold there, powered or not.
+    // Quick damped stop: brake to rest and hold there, powered or not. A joint never brakes past
+    // its limits (the joint's own limit stops it), so nothing is left beyond one after resume.
     step_to_rest(limits.max_acc_rad_s2, dt_s, state);
+    const double low = std::min(limits.min_rad, joint.position_rad);
+    const double high = std::max(limits.max_rad, joint.position_rad);
+    if (state.position_rad < low || state.position_rad > high) {
+      state = ProfileState{.position_rad = std::clamp(state.position_rad, low, high), .velocity_rad_s = 0};
+    }
     joint.target_rad = state.position_rad;
   } else if (!joint.enabled) {
     state.velocity_rad_s = 0;  // holds (the real arm sags under gravity)

@@ -55,7 +55,8 @@ void Controller::handle(const CanMessage& message, std::vector<CanMessage>& repl
           [&](const JointTargetPair& f) { arm_.joint_target(f); }, [&](const MoveCPoint& f) { arm_.move_c_point(f); },
           [&](const GripperControl& f) { arm_.gripper_control(f); }, [&](const MitControl& f) { arm_.mit_control(f); },
           [&](const MasterSlaveConfig& f) { arm_.settings().master_slave = f; },  // no ack (spec §7)
-          [&](const MotorEnable& f) { arm_.motor_enable(f); },                    // no ack (spec §7)
+          [&](const MasterArmHomeRequest&) {},                  // for a leader arm; the simulated arm is a follower
+          [&](const MotorEnable& f) { arm_.motor_enable(f); },  // no ack (spec §7)
           [&](const JointLimitQuery& f) { answer_joint_limit_query(f, replies); },
           [&](const JointLimitSet& f) {
             if (arm_.joint_limit_set(f)) ack(kAckJointLimitSet, false, replies);

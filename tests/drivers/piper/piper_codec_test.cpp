@@ -14,6 +14,7 @@
 #include <ostream>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -113,12 +114,17 @@ TEST(PiperCodecEncode, MitModeCodeIs06WithTheTorque12Layout) {
   EXPECT_EQ(wire_of(encode(frame, torque12())), (Wire{0x151, {0x01, 0x06, 0x00, 0xAD, 0, 0, 0, 0}}));
 }
 
-TEST(PiperCodecDecode, MitModeCodesBothDecodeAsMit) {
-  for (const std::uint8_t code : {std::uint8_t{0x04}, std::uint8_t{0x06}}) {
-    const auto frame = decoded<ModeControl>(message_of(0x151, {0x01, code, 0x00, 0xAD, 0, 0, 0, 0}));
-    EXPECT_EQ(frame.move_mode, MoveMode::kMit) << static_cast<int>(code);
-    EXPECT_TRUE(frame.mit);
-  }
+// MIT is 0x04 up to S-V1.8-7 (SDK 0.6.1 reads 0x06 as unknown) and 0x06 from S-V1.8-8.
+TEST(PiperCodecDecode, MitModeCodeFollowsTheLayout) {
+  const auto move_mode = [](std::uint8_t code, const CodecOptions& options) {
+    return decoded<ModeControl>(message_of(0x151, {0x01, code, 0x00, 0xAD, 0, 0, 0, 0}), options).move_mode;
+  };
+  EXPECT_EQ(move_mode(0x04, {}), MoveMode::kMit);
+  EXPECT_EQ(move_mode(0x06, {}), MoveMode::kUnknown);
+  EXPECT_EQ(move_mode(0x06, torque12()), MoveMode::kMit);
+  EXPECT_EQ(move_mode(0x04, torque12()), MoveMode::kUnknown);
+  EXPECT_EQ(move_mode(0x07, {}), MoveMode::kUnknown);
+  EXPECT_STREQ(move_mode_text(MoveMode::kUnknown), "unknown");
   EXPECT_EQ(decoded<ModeControl>(message_of(0x151, {0x01, 0x05, 0, 0, 0, 0, 0, 0})).move_mode, MoveMode::kCpv);
 }
 
@@ -274,9 +280,15 @@ TEST(PiperCodecMit, OutOfRangeValuesSaturate) {
   EXPECT_EQ(bytes(MitControl{.position_rad = nan, .kp = nan, .torque = nan}), bytes(MitControl{}));
 }
 
-TEST(PiperCodecMit, JointOutsideOneToSixSaturates) {
-  EXPECT_EQ(encode(MitControl{.joint = 0}).id, 0x15AU);
-  EXPECT_EQ(encode(MitControl{.joint = 9}).id, 0x15FU);
+TEST(PiperCodecMit, JointOutsideOneToSixIsRefused) {  // as the SDK's JointMitCtrl refuses it
+  EXPECT_THROW((void)encode(MitControl{.joint = 0}), std::invalid_argument);
+  try {
+    (void)encode(MitControl{.joint = 7});
+    ADD_FAILURE() << "MIT joint 7 was encoded";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("MIT joint 7"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(encode(MitControl{.joint = 6}).id, 0x15FU);
 }
 
 // --- 0x470–0x47E, 0x4AF: configuration (§6) ---------------------------------------------------------
@@ -316,25 +328,32 @@ TEST(PiperCodecEncode, JointLimitSetAnglesAreDeciDegrees) {
             (Wire{0x474, {0x01, 0x05, 0xDC, 0xFA, 0x24, 0x01, 0x2C, 0x00}}));
 }
 
-TEST(PiperCodecEncode, PresentLimitsNeverSaturateIntoTheUnchangedSentinel) {
+// Present values use the whole field and saturate at its ends, as the SDK sends them
+// (EndSpdAndAccParamSet 65535 → FF FF); only an absent value is the 0x7FFF sentinel.
+TEST(PiperCodecEncode, PresentLimitsSaturateAtTheFieldEnds) {
   const auto bytes =
       wire_of(encode(JointLimitSet{.joint = 2, .max_angle_rad = 1e6, .min_angle_rad = -1e6, .max_speed_rad_s = 1e6}))
           .bytes;
-  EXPECT_EQ(bytes, (Bytes{0x02, 0x7F, 0xFE, 0x80, 0x00, 0x7F, 0xFE, 0x00}));
+  EXPECT_EQ(bytes, (Bytes{0x02, 0x7F, 0xFF, 0x80, 0x00, 0xFF, 0xFF, 0x00}));
   EXPECT_EQ(wire_of(encode(JointLimitSet{.joint = 2, .max_speed_rad_s = -1.0})).bytes[5], 0x00);
   EXPECT_EQ(wire_of(encode(EndVelAccSet{{.max_linear_velocity_m_s = 1e3}})).bytes,
-            (Bytes{0x7F, 0xFE, 0x7F, 0xFF, 0x7F, 0xFF, 0x7F, 0xFF}));
-  EXPECT_EQ(wire_of(encode(JointConfig{.joint = 1, .max_acc_rad_s2 = 1e6})).bytes,
-            (Bytes{0x01, 0x00, 0xAE, 0x7F, 0xFE, 0x00, 0x00, 0x00}));
+            (Bytes{0xFF, 0xFF, 0x7F, 0xFF, 0x7F, 0xFF, 0x7F, 0xFF}));
+  EXPECT_EQ(wire_of(encode(EndVelAccSet{{.max_linear_velocity_m_s = 65.535}})).bytes[0], 0xFF);
+  EXPECT_EQ(wire_of(encode(JointConfig{.joint = 1, .apply_max_acc = true, .max_acc_rad_s2 = 1e6})).bytes,
+            (Bytes{0x01, 0x00, 0xAE, 0xFF, 0xFF, 0x00, 0x00, 0x00}));
 }
 
+// The acceleration goes out whatever the flag says, as the SDK sends its max_joint_acc (500 by
+// default) with acc_param_is_effective off.
 TEST(PiperCodecEncode, JointConfigFields) {
   EXPECT_EQ(wire_of(encode(JointConfig{.joint = 3, .set_zero = true})),
-            (Wire{0x475, {0x03, 0xAE, 0x00, 0x7F, 0xFF, 0x00, 0x00, 0x00}}));
-  EXPECT_EQ(wire_of(encode(JointConfig{.max_acc_rad_s2 = 5.0})),  // 0.01 rad/s² → 500
+            (Wire{0x475, {0x03, 0xAE, 0x00, 0x01, 0xF4, 0x00, 0x00, 0x00}}));
+  EXPECT_EQ(wire_of(encode(JointConfig{.apply_max_acc = true, .max_acc_rad_s2 = 5.0})),  // 0.01 rad/s² → 500
             (Wire{0x475, {0x07, 0x00, 0xAE, 0x01, 0xF4, 0x00, 0x00, 0x00}}));
+  EXPECT_EQ(wire_of(encode(JointConfig{.joint = 1, .max_acc_rad_s2 = 3.0})),
+            (Wire{0x475, {0x01, 0x00, 0x00, 0x01, 0x2C, 0x00, 0x00, 0x00}}));
   EXPECT_EQ(wire_of(encode(JointConfig{.joint = 7, .clear_error = true})),
-            (Wire{0x475, {0x07, 0x00, 0x00, 0x7F, 0xFF, 0xAE, 0x00, 0x00}}));
+            (Wire{0x475, {0x07, 0x00, 0x00, 0x01, 0xF4, 0xAE, 0x00, 0x00}}));
 }
 
 TEST(PiperCodecEncode, ParamEnquiryExamples) {
@@ -381,7 +400,9 @@ TEST(PiperCodecDecode, ArmStatus) {
   EXPECT_EQ(status.trajectory_index, 5);
   EXPECT_EQ(status.angle_limit_bits, 0x21);  // J1 and J6 beyond their limits
   EXPECT_EQ(status.comm_error_bits, 0x02);   // J2 silent
-  EXPECT_EQ(decoded<ArmStatus>(message_of(0x2A1, {0x06, 0, 0x06, 0, 0, 0, 0, 0})).mode_feed, MoveMode::kMit);
+  EXPECT_EQ(decoded<ArmStatus>(message_of(0x2A1, {0x06, 0, 0x06, 0, 0, 0, 0, 0}), torque12()).mode_feed,
+            MoveMode::kMit);
+  EXPECT_EQ(decoded<ArmStatus>(message_of(0x2A1, {0x06, 0, 0x06, 0, 0, 0, 0, 0})).mode_feed, MoveMode::kUnknown);
 }
 
 TEST(PiperCodecDecode, ArmStatusEncodesMitPerLayout) {
@@ -517,6 +538,7 @@ std::vector<Sample> every_frame_type() {
       {GripperControl{.stroke_m = 0.035, .effort_nm = 1.5, .enable = GripperEnable::kEnable}, 8},
       {MitControl{.joint = 3, .position_rad = 0.5, .velocity_rad_s = -1, .kp = 10, .kd = 0.8, .torque = 2}, 8},
       {MasterSlaveConfig{.linkage = 0xFC, .feedback_offset = 0x10, .control_offset = 0x20, .linkage_offset = 0x10}, 4},
+      {MasterArmHomeRequest{.mode = MasterArmHome::kBothToZero}, 3},
       {MotorEnable{.motor = 3, .enable = false}, 2},
       {JointLimitQuery{.joint = 4, .acceleration = true}, 2},
       {JointLimitSet{.joint = 5, .max_angle_rad = 1.2, .max_speed_rad_s = 2.5}, 7},
@@ -676,9 +698,10 @@ TEST(PiperCodecRoundTrip, ScaledFieldsWithinOneCount) {
   EXPECT_NEAR(set.min_angle_rad.value_or(0), -1.745, kDeciDegree);
   EXPECT_FALSE(set.max_speed_rad_s.has_value());
 
-  const auto config = round_trip(JointConfig{.joint = 2, .max_acc_rad_s2 = 4.321}, agx);
-  EXPECT_NEAR(config.max_acc_rad_s2.value_or(0), 4.321, 0.001);
-  EXPECT_FALSE(round_trip(JointConfig{.joint = 2}).max_acc_rad_s2.has_value());
+  const auto config = round_trip(JointConfig{.joint = 2, .apply_max_acc = true, .max_acc_rad_s2 = 4.321}, agx);
+  EXPECT_TRUE(config.apply_max_acc);
+  EXPECT_NEAR(config.max_acc_rad_s2, 4.321, 0.001);
+  EXPECT_FALSE(round_trip(JointConfig{.joint = 2}).apply_max_acc);
 
   EXPECT_NEAR(round_trip(JointAccReply{.joint = 1, .max_acc_rad_s2 = 1.234}).max_acc_rad_s2, 1.234, 0.01);
 
@@ -868,10 +891,13 @@ TEST(PiperFirmware, SoftwareVersionFromTheReassembledReply) {
   EXPECT_EQ(mit_layout_for(*software_version(received)), MitLayout::kTorque8Crc);
 }
 
-TEST(PiperFirmware, NoVersionUntilEightCharactersFollowTheMarker) {
+// As the SDK's GetPiperFirmwareVersion: what has arrived of the 8 characters once "S-V" is there.
+TEST(PiperFirmware, PartialVersionOnceTheMarkerArrives) {
   EXPECT_EQ(software_version(""), std::nullopt);
   EXPECT_EQ(software_version("H-V1.2-1 ARM_MC"), std::nullopt);
-  EXPECT_EQ(software_version(firmware_reply("S-V1.8-2").substr(0, 66)), std::nullopt);
+  EXPECT_EQ(software_version(firmware_reply("S-V1.8-2").substr(0, 62)), std::nullopt);
+  EXPECT_EQ(software_version(firmware_reply("S-V1.8-2").substr(0, 63)), std::optional<std::string>{"S-V"});
+  EXPECT_EQ(software_version(firmware_reply("S-V1.8-2").substr(0, 66)), std::optional<std::string>{"S-V1.8"});
   EXPECT_EQ(software_version(firmware_reply("S-V1.8-2").substr(0, 68)), std::optional<std::string>{"S-V1.8-2"});
 }
 

@@ -70,7 +70,7 @@ TEST_F(PiperDriverTest, ConnectChecksFeedbackAndReadsTheFirmware) {
 TEST_F(PiperDriverTest, TheOpsThatActOnTheJointsNeedFreeMotors) {
   EXPECT_EQ(testing::ops_needing_free_motors(driver_.describe()),
             (std::vector<std::string>{"end_pose", "move_c", "mode", "gripper", "enable", "disable", "master_slave",
-                                      "set_joint_limits", "set_max_speed", "joint_config", "set_max_acc",
+                                      "master_home", "set_joint_limits", "set_max_speed", "joint_config", "set_max_acc",
                                       "param_config", "set_end_limits", "set_crash_protection", "set_gripper_params"}));
 }
 
@@ -348,6 +348,9 @@ TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
   ASSERT_TRUE(fk);
   EXPECT_NEAR(fk.value()["flange"]["x_m"].get<double>(), 0.056128, 1e-5) << fk.value().dump();
   EXPECT_NEAR(fk.value()["flange"]["z_m"].get<double>(), 0.213266, 1e-5) << fk.value().dump();
+  ASSERT_EQ(fk.value()["links"].size(), 6U) << "every link's pose, as GetFK";
+  EXPECT_NEAR(fk.value()["links"][0]["z_m"].get<double>(), 0.123, 1e-9);  // link 1: the base's d1
+  EXPECT_EQ(fk.value()["links"][5], fk.value()["flange"]);
 }
 
 TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
@@ -398,6 +401,21 @@ TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   const auto unknown = driver_.call("fly", nullptr);
   ASSERT_FALSE(unknown);
   EXPECT_NE(unknown.error().message.find("end_pose"), std::string::npos) << "lists the ops";
+}
+
+// ReqMasterArmMoveToHome (0x191): the SDK's three modes, byte for byte; anything else refused.
+TEST_F(PiperDriverTest, MasterHomeSendsTheLeaderArmRequest) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDeviceJoints);
+  const auto sent = driver_.call("master_home", {{"mode", "leader_to_zero"}});
+  ASSERT_TRUE(sent) << sent.error().message;
+  EXPECT_EQ(sent.value()["sent"], "ReqMasterArmMoveToHome");
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) {
+    return sim_.control({{"op", "state"}})["frames_received"].value("0x191", 0) == 1;
+  }));
+  const auto unknown = driver_.call("master_home", {{"mode", "home"}});
+  ASSERT_FALSE(unknown);
+  EXPECT_NE(unknown.error().message.find("leader_to_zero"), std::string::npos) << unknown.error().message;
 }
 
 TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {

@@ -200,6 +200,20 @@ TEST(PiperKinematics, InverseKinematicsRecoversReachablePoses) {
   }
 }
 
+// Near the wrist singularity (J5 ≈ 0) the search from the seed alone landed 140° away for a
+// 20 mm move (J4 from 0.8 to −1.65 rad); the solution nearest the current joints keeps J4 on its side.
+TEST(PiperKinematics, InverseKinematicsNearTheWristSingularityTakesTheNearestSolution) {
+  const Joints start{0.0, 0.5, -1.0, 0.8, 0.02, -0.8};
+  CartesianPose target = forward_kinematics(start, DhVariant::kOffset);
+  target.y_m -= 0.02;
+  const IkResult result = inverse_kinematics(target, start, DhVariant::kOffset, kMin, kMax);
+  ASSERT_TRUE(result.converged);
+  double largest = 0;
+  for (std::size_t j = 0; j < start.size(); ++j) largest = std::max(largest, std::abs(result.q_rad[j] - start[j]));
+  EXPECT_LT(largest, radians(60)) << "J4 " << result.q_rad[3] << ", J6 " << result.q_rad[5];
+  EXPECT_GT(result.q_rad[3], 0.0);
+}
+
 TEST(PiperKinematics, InverseKinematicsFromTheSolutionTakesNoStep) {
   const Joints q{0.2, 0.2, -0.2, 0.3, -0.2, 0.5};
   const IkResult result =
