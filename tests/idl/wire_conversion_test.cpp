@@ -27,7 +27,8 @@ inline auto fields(const Quaternion& m) { return std::tie(m.x, m.y, m.z, m.w); }
 inline auto fields(const KeyValue& m) { return std::tie(m.key, m.value); }
 inline auto fields(const SessionInfo& m) {
   return std::tie(m.uuid, m.node_name, m.device, m.motor_ids, m.control_mode, m.default_behavior, m.applied_behavior,
-                  m.timeout_ms, m.time_left_ms, m.granted_at.sec, m.granted_at.nanosec, m.commands_accepted);
+                  m.timeout_ms, m.time_left_ms, m.granted_at.sec, m.granted_at.nanosec, m.commands_accepted,
+                  m.policy_name, m.policy_file_name);
 }
 inline auto fields(const LoopStatistics& m) {
   return std::tie(m.rate_hz, m.realtime, m.ticks, m.overruns, m.window_ticks, m.period_p50_us, m.period_p99_us,
@@ -72,7 +73,7 @@ inline auto fields(const DeviceStatus& m) {
 }
 inline auto fields(const RequestControlRequest& m) {
   return std::tie(m.node_name, m.motor_ids, m.control_mode, m.default_behavior, m.timeout_ms, m.default_kp,
-                  m.default_kd, m.device);
+                  m.default_kd, m.device, m.policy_name, m.policy_file_name);
 }
 inline auto fields(const RequestControlResponse& m) {
   return std::tie(m.success, m.message, m.uuid, m.motor_ids, m.applied_behavior, m.device, m.session_id);
@@ -122,6 +123,8 @@ SessionInfo session(int n) {
   s.time_left_ms = 700 + n;
   s.granted_at = Time{1'700'000'000, 42u};
   s.commands_accepted = std::uint64_t{9'000'000'000} + static_cast<std::uint32_t>(n);
+  s.policy_name = "policy-" + std::to_string(n);
+  s.policy_file_name = "/opt/policies/" + std::to_string(n) + ".onnx";
   return s;
 }
 
@@ -216,8 +219,9 @@ DeviceStatus sample() {
 }
 template <>
 RequestControlRequest sample() {
-  return RequestControlRequest{"node", {3, 4},       ControlMode::kTorque, Behavior::kZeroTorque,
-                               2500,   {30.f, 31.f}, {1.f, 1.5f},          "arm"};
+  return RequestControlRequest{"node", {3, 4},        ControlMode::kTorque, Behavior::kZeroTorque,
+                               2500,   {30.f, 31.f},  {1.f, 1.5f},          "arm",
+                               "walk", "walk_v3.onnx"};
 }
 template <>
 RequestControlResponse sample() {
