@@ -26,18 +26,18 @@ def run(vendor, program):
 
 def main(args):
     columns = ("vectors", "passed", "deliberate_differences", "not_implemented", "failed")
-    print(f"{'vendor':<12}" + "".join(f"{c.replace('_', ' '):>24}" for c in columns))
+    print(f"{'vendor':<28}" + "".join(f"{c.replace('_', ' '):>24}" for c in columns))
     ok = True
     for arg in args:
         vendor, _, program = arg.partition("=")
         report = run(vendor, program)
         if report is None:
-            print(f"{vendor:<12} replay program failed: {program}")
+            print(f"{vendor:<28} replay program failed: {program}")
             ok = False
             continue
-        print(f"{vendor:<12}" + "".join(f"{report[c]:>24}" for c in columns))
+        print(f"{vendor:<28}" + "".join(f"{report[c]:>24}" for c in columns))
         for group, counts in sorted(report["groups"].items()):
-            print(f"  {group:<10}" + "".join(f"{counts[c]:>24}" for c in columns))
+            print(f"  {group:<26}" + "".join(f"{counts[c]:>24}" for c in columns))
         ok = ok and report["failed"] == 0
     return 0 if ok else 1
 
