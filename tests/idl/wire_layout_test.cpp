@@ -198,6 +198,7 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   session.time_left_ms = 250;
   session.granted_at = Time{7, 8};
   session.commands_accepted = 0x0102030405060708;
+  session.policy_name = "walk";
   SessionStatus status;
   status.header = Header{Time{5, 6}, "f"};
   status.state = "active";
@@ -216,7 +217,8 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   expected.count(1);  // sessions
   expected.string("u1").string("node").string("arm").count(2).i32(3).i32(4);
   expected.i32(2).i32(1).i32(0).i32(500).i32(250).i32(7).u32(8);
-  expected.u64(0x0102030405060708);                                          // 8-aligned relative to the body start
+  expected.u64(0x0102030405060708);    // 8-aligned relative to the body start
+  expected.string("walk").string("");  // the session's policy_name, policy_file_name
   expected.u64(9).u64(10).count(1).string("estop").u64(11).u64(12).u64(13);  // surface, after the PI Plus fields
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(raw.reader.get())));
 }
@@ -292,6 +294,7 @@ Xcdr1 request_body(std::uint64_t guid, std::int64_t sequence) {
   Xcdr1 bytes;
   bytes.u64(guid).i64(sequence);
   bytes.string("n").count(2).i32(1).i32(2).i32(1).i32(2).i32(250).count(1).f32(1.5f).count(0).string("dev");
+  bytes.string("").string("");  // policy_name, policy_file_name
   return bytes;
 }
 
