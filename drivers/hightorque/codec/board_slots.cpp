@@ -78,9 +78,9 @@ double board_value(Field field, std::uint16_t raw, const MotorScaling& scaling) 
   const auto counts = static_cast<std::int16_t>(raw);
   switch (layouts::quantity(field)) {
     case units::Quantity::kPosition:
-      return static_cast<float>(static_cast<double>(counts * units::kTwoPiF) / 1e4);
+      return static_cast<float>(static_cast<double>(static_cast<float>(counts) * units::kTwoPiF) / 1e4);
     case units::Quantity::kVelocity:
-      return static_cast<float>(static_cast<double>(counts * units::kTwoPiF) / 4e3);
+      return static_cast<float>(static_cast<double>(static_cast<float>(counts) * units::kTwoPiF) / 4e3);
     case units::Quantity::kTorque:
       return static_cast<float>(counts * scaling.torque_per_unit + scaling.torque_offset_nm);
     case units::Quantity::kGain:

@@ -72,6 +72,7 @@ Result<std::vector<std::uint16_t>> parse_tool_modbus_read_reply(ByteView data, s
   }
   ByteReader reader(data.subspan(kReadHeaderBytes));
   std::vector<std::uint16_t> values;
+  values.reserve(count);
   for (std::uint16_t i = 0; i < count; ++i) values.push_back(reader.u16_be().value_or(0));
   return values;
 }

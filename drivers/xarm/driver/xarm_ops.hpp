@@ -69,12 +69,11 @@ class XarmOps {
   Result<nlohmann::json> gripper_get_position(const nlohmann::json& args);
   Result<nlohmann::json> gripper_get_error(const nlohmann::json& args);
   Result<nlohmann::json> gripper_clean_error(const nlohmann::json& args);
-  /// Reads `count` gripper registers from `address`.
-  Result<std::vector<std::uint16_t>> gripper_read(std::string_view op, GripperRegister address, std::uint16_t count);
-  /// Writes gripper registers from `address`, then reads the gripper's error code: a write the
+  /// Reads `count` gripper registers from `reg`.
+  Result<std::vector<std::uint16_t>> gripper_read(std::string_view op, GripperRegister reg, std::uint16_t count);
+  /// Writes gripper registers from `reg`, then reads the gripper's error code: a write the
   /// gripper took while it reports an error is refused in its words.
-  Result<nlohmann::json> gripper_write(std::string_view op, GripperRegister address,
-                                       std::span<const std::uint16_t> values);
+  Result<nlohmann::json> gripper_write(std::string_view op, GripperRegister reg, std::span<const std::uint16_t> values);
   /// Refuses unless the tool's RS-485 bus runs at the gripper's 2 Mbit/s.
   std::optional<Error> check_tool_baud_rate(std::string_view op);
 
