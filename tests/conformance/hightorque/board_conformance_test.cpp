@@ -126,7 +126,9 @@ void judge_packet(std::string_view group, const std::string& what, const Bytes& 
     const bool wrapped =
         std::abs(ideal) >= 32767.0 && std::abs(robotd_value) == 32767 && (ideal > 0) == (robotd_value > 0);
     if (!wrapped) {
-      verdict(group, Outcome::failed, what, detail + "\nfirst difference: motor " + std::to_string(motor) + " " + name);
+      std::string why = detail;
+      why += "\nfirst difference: motor " + std::to_string(motor) + " " + name;
+      verdict(group, Outcome::failed, what, why);
       return;
     }
   }

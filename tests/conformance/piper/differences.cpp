@@ -22,7 +22,10 @@ const json* entry(std::string_view section, std::string_view group, const json& 
     if (item.at("group") != group) continue;
     const json& listed_key = item.at("key");
     if (listed_key == key) return &item;
-    if (key.contains("call") && listed_key.size() == 1 && listed_key.value("call", "") == key.at("call")) return &item;
+    if (key.contains("call") && listed_key.size() == 1 && listed_key.contains("call") &&
+        listed_key.at("call") == key.at("call")) {
+      return &item;
+    }
   }
   return nullptr;
 }

@@ -433,7 +433,7 @@ TEST_F(PiperSimTest, TheSdkTranscriptReplays) {
     }
     if (name == "move p 20 mm") continue;  // arrives in the next step
     if (name == "high-follow j2 down") {
-      ASSERT_TRUE(wait_for([this, kMilliDeg] { return heard_.joints[1] < 30000 * kMilliDeg; }, 2s));
+      ASSERT_TRUE(wait_for([this] { return heard_.joints[1] < 30000 * kMilliDeg; }, 2s));
       continue;
     }
     if (name == "enable" || name == "enable again") {
