@@ -40,7 +40,7 @@ nlohmann::json to_json(const Counts& counts) {
 
 // Prints the tally when the program ends and, when ROBOTD_CONFORMANCE_REPORT names a file
 // (tests/conformance/report.py sets it), writes it there as JSON.
-class ReportEnvironment : public testing::Environment {
+class ReportEnvironment : public ::testing::Environment {
  public:
   void TearDown() override {
     Counts total;
@@ -68,7 +68,8 @@ class ReportEnvironment : public testing::Environment {
 
 // Registered before main(), the one way with GoogleTest's own main; GoogleTest owns it.
 // NOLINTNEXTLINE(cert-err58-cpp,bugprone-throwing-static-initialization,cppcoreguidelines-owning-memory)
-[[maybe_unused]] const testing::Environment* const kReport = testing::AddGlobalTestEnvironment(new ReportEnvironment);
+[[maybe_unused]] const ::testing::Environment* const kReport =
+    ::testing::AddGlobalTestEnvironment(new ReportEnvironment);
 
 }  // namespace
 

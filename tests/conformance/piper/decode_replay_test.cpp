@@ -32,8 +32,6 @@ json counts_or_null(const std::optional<double>& value, double unit) {
   return value ? json(counts_of(*value, unit)) : json(nullptr);
 }
 
-constexpr std::uint8_t kMagic = 0xAE;
-constexpr std::uint8_t kMitFlag = 0xAD;
 constexpr double kMilli = 0.001;
 const CodecOptions kSdkOptions{};  // SDK 0.6.1: 8-bit MIT torque, 0.001 units for speed and motor position
 

@@ -15,7 +15,6 @@ namespace {
 using nlohmann::json;
 using Frames = std::vector<CanMessage>;
 
-constexpr std::uint8_t kMagic = 0xAE;
 constexpr int kUnchangedCount = 0x7FFF;  // the SDK's "leave unchanged" argument
 
 std::uint8_t u8(const json& args, std::size_t i) { return args.at(i).get<std::uint8_t>(); }
