@@ -240,7 +240,9 @@ void compare_state(const json& vendor, const MotorState& state, std::uint8_t cod
                   std::to_string(state.velocity_rad_s) + " torque " + std::to_string(state.torque_nm);
   if (code == 0x0C && check.same) {
     const double temperature = state.temperature_c.value_or(NAN);
-    const auto whole_degrees = static_cast<std::int8_t>(std::trunc(temperature));
+    // The SDK stores the truncated reading in an int8_t: x86 truncates to 32 bits, then the byte
+    // wraps (-3276.8 degrees reads as 52). Converting a double straight to int8_t is undefined.
+    const auto whole_degrees = static_cast<std::int8_t>(static_cast<std::int32_t>(std::trunc(temperature)));
     if (whole_degrees != vendor.at("temperature").get<int>()) {
       check.same = false;
       check.detail += "; temperature " + std::to_string(temperature);
