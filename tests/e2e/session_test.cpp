@@ -173,19 +173,27 @@ TEST_F(SessionTest, KilledClientZeroTorqueFallbackLetsTheLoadedJointFall) {
 
 TEST_F(SessionTest, KeepFallbackHoldsPosition) {
   start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
-  auto session = client().request_control(arm_request({}, Behavior::kKeep, 200ms));
+  // The timeout leaves a sanitized build time to send the first command.
+  auto session = client().request_control(arm_request({}, Behavior::kKeep, 500ms));
   ASSERT_TRUE(session) << session.error().message;
   const std::vector<float> target{0.2F, 0.4F, 0, 0, 0, 0};
+  ASSERT_TRUE(session.value().send_positions(target));
   ASSERT_TRUE(wait_for_joints(
       [&](const JointState& s) {
         (void)session.value().send_positions(target);
         return max_error(s, target) < 0.02;
       },
       5s));
-  std::this_thread::sleep_for(700ms);  // the session times out after 200 ms
-  auto status = client().session_status(1s);
-  ASSERT_TRUE(status);
-  EXPECT_TRUE(status.value().sessions.empty());
+  // The commands stop: the session times out 500 ms after the last one.
+  bool ended = false;
+  const auto deadline = std::chrono::steady_clock::now() + 3s;
+  while (!ended && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(50ms);
+    auto status = client().session_status(1s);
+    ended = status && status.value().sessions.empty();
+  }
+  ASSERT_TRUE(ended) << "the session did not time out";
+  std::this_thread::sleep_for(200ms);
   EXPECT_LT(max_error(joint_state(), target), 0.02) << "KEEP must hold the last target";
 }
 

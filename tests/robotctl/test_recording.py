@@ -359,7 +359,9 @@ class ReplayTest(RobotdTestCase):
         fast = replay_seconds(result)
         self.assertAlmostEqual(normal, self.recorded_s, delta=0.3)
         self.assertAlmostEqual(fast / normal, 0.5, delta=0.1)
-        self.assertFollows(replayed, 2.0, tolerance_rad=0.05)
+        # A time offset between the two recordings costs position error in proportion to the
+        # joints' speed: at twice the speed, twice the tolerance.
+        self.assertFollows(replayed, 2.0, tolerance_rad=0.1)
 
     def test_ctrl_c_releases_the_motors_and_exits_130(self):
         replay = self.robotctl.start("replay", str(self.recorded), "--device", "arm", "--speed", "0.1")

@@ -1,0 +1,23 @@
+# robotd_add_stage_target(<name> DIRECTORIES <dir>...)
+# A target that builds every executable and library defined in the given source directories and
+# below them. CI's main stage (scripts/test) builds `robotd_main_stage` instead of everything: the
+# tests it does not run are compiled, with -Werror, by the sanitizer stage.
+function(robotd_add_stage_target name)
+  cmake_parse_arguments(ARG "" "" "DIRECTORIES" ${ARGN})
+  set(pending ${ARG_DIRECTORIES})
+  set(targets "")
+  while(pending)
+    list(POP_FRONT pending directory)
+    get_property(defined DIRECTORY ${directory} PROPERTY BUILDSYSTEM_TARGETS)
+    foreach(target IN LISTS defined)
+      get_target_property(type ${target} TYPE)
+      if(type MATCHES "^(EXECUTABLE|SHARED_LIBRARY|STATIC_LIBRARY|MODULE_LIBRARY|OBJECT_LIBRARY)$")
+        list(APPEND targets ${target})
+      endif()
+    endforeach()
+    get_property(children DIRECTORY ${directory} PROPERTY SUBDIRECTORIES)
+    list(APPEND pending ${children})
+  endwhile()
+  add_custom_target(${name})
+  add_dependencies(${name} ${targets})
+endfunction()
