@@ -37,10 +37,10 @@ class BoardBus final : public MotorBus {
         start_up_timeout_(start_up_timeout),
         slots_(highest_id_) {}
 
-  Result<void> open() override {
+  Result<void> open(const driver::AbortFlag& abort) override {
     if (auto opened = port_.open(); !opened) return opened;
     port_.flush();
-    auto setup = start_up_board(port_, motor_ids_, start_up_timeout_);
+    auto setup = start_up_board(port_, motor_ids_, start_up_timeout_, abort);
     if (!setup) {
       port_.close();
       return setup.error();

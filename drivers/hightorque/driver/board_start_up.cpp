@@ -4,7 +4,6 @@
 #include <functional>
 #include <optional>
 #include <string>
-#include <thread>
 #include <tuple>
 
 namespace robotd::hightorque {
@@ -32,7 +31,8 @@ bool older(const FirmwareVersion& a, const FirmwareVersion& b) {
 /// One port's packets during start-up: sends, and hands every packet received to a callback.
 class StartUpLink {
  public:
-  StartUpLink(transport::SerialPort& port, milliseconds timeout) : port_(port), timeout_(timeout) {}
+  StartUpLink(transport::SerialPort& port, milliseconds timeout, const driver::AbortFlag& abort)
+      : port_(port), timeout_(timeout), abort_(abort) {}
 
   Result<void> send(BoardCommand command, int payload_byte) {
     std::array<std::uint8_t, kBoardHeaderSize + 1> packet{};
@@ -54,7 +54,9 @@ class StartUpLink {
         if (auto sent = send(command, payload_byte); !sent) return sent.error();
         next_send += every;
       }
-      std::this_thread::sleep_for(milliseconds(1));
+      if (!abort_.sleep_for(milliseconds(1))) {
+        return driver::aborted_error("waiting for board " + port_.describe() + " to answer its start-up");
+      }
       auto read = drain(answered);
       if (!read) return read.error();
       if (read.value()) return true;
@@ -83,6 +85,7 @@ class StartUpLink {
 
   transport::SerialPort& port_;
   milliseconds timeout_;
+  const driver::AbortFlag& abort_;
   BoardFrameSplitter splitter_;
   BoardFrame frame_;
 };
@@ -171,9 +174,9 @@ Result<BoardFunction> function_for(const transport::SerialPort& port, std::span<
 }  // namespace
 
 Result<BoardSetup> start_up_board(transport::SerialPort& port, std::span<const int> motor_ids,
-                                  std::chrono::milliseconds timeout) {
+                                  std::chrono::milliseconds timeout, const driver::AbortFlag& abort) {
   if (motor_ids.empty()) return make_error(ErrorCode::kInvalidArgument, "board " + port.describe() + ": no motors");
-  StartUpLink link(port, timeout);
+  StartUpLink link(port, timeout, abort);
   BoardSetup setup;
   auto firmware = read_board_firmware(link, port, static_cast<int>(motor_ids.size()), timeout);
   if (!firmware) return firmware.error();

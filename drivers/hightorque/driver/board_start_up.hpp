@@ -11,6 +11,7 @@
 #include <span>
 
 #include "codec/hightorque_codec.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/result.hpp"
 #include "robotd/transport/serial_port.hpp"
 
@@ -26,8 +27,8 @@ struct BoardSetup {
 /// Runs the start-up for the motors `motor_ids` (ascending, 1…kMaxMotorId) on an open board
 /// port. An error names the step the board or a motor did not answer, or why robotd cannot drive
 /// what answered (board firmware before 4.0, motor firmware before 4.2.0, firmware-5 motors
-/// mixed with others).
+/// mixed with others). `abort` ends the waiting at once (an e-stop or shutdown).
 Result<BoardSetup> start_up_board(transport::SerialPort& port, std::span<const int> motor_ids,
-                                  std::chrono::milliseconds timeout);
+                                  std::chrono::milliseconds timeout, const driver::AbortFlag& abort);
 
 }  // namespace robotd::hightorque
