@@ -72,4 +72,19 @@ std::size_t encode_block(std::span<const BlockSlot> slots, Query query,
   return frames;
 }
 
+std::size_t encode_block_system(BlockSystem what, std::span<const int> motors, Query query, int motor_count,
+                                std::span<transport::CanMessage> out) noexcept {
+  const layouts::BlockForm* form = layouts::block_form_for_request(
+      what == BlockSystem::kSoftReboot ? MotorRequest::Kind::kSoftReboot : MotorRequest::Kind::kSetZero);
+  if (form == nullptr || motors.empty() || out.empty() || motor_count < kMinMotorId || motor_count > kMaxBlockMotorId) {
+    return 0;
+  }
+  for (const int motor : motors) {
+    if (motor < kMinMotorId || motor > motor_count) return 0;
+  }
+  out[0] = unset_frame(*form, 0, static_cast<std::size_t>(motor_count), query);
+  for (const int motor : motors) out[0].data[static_cast<std::size_t>(motor - 1)] = kFlagSet;
+  return 1;
+}
+
 }  // namespace robotd::hightorque

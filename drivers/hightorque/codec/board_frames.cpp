@@ -42,10 +42,17 @@ std::size_t encode_board_admin(BoardCommand command, int motor, std::span<std::u
 
 std::size_t encode_board_timeout(std::uint16_t timeout_ms, int motor_count, std::span<std::uint8_t> out) noexcept {
   if (motor_count < kMinMotorId || motor_count > kMaxMotorId) return 0;
+  std::array<std::uint16_t, kMaxMotorId> timeouts{};
+  timeouts.fill(timeout_ms);
+  return encode_board_timeouts(std::span(timeouts).first(static_cast<std::size_t>(motor_count)), out);
+}
+
+std::size_t encode_board_timeouts(std::span<const std::uint16_t> timeout_ms_by_motor,
+                                  std::span<std::uint8_t> out) noexcept {
+  if (timeout_ms_by_motor.empty() || timeout_ms_by_motor.size() > static_cast<std::size_t>(kMaxMotorId)) return 0;
   std::array<std::uint8_t, std::size_t{2} * kMaxMotorId> payload{};
-  const auto size = std::size_t{2} * static_cast<std::size_t>(motor_count);
-  for (std::size_t at = 0; at < size; at += 2) wire::put_u16(payload, at, timeout_ms);
-  return encode_board_frame(BoardCommand::kTimeout, std::span(payload).first(size), out);
+  for (std::size_t i = 0; i < timeout_ms_by_motor.size(); ++i) wire::put_u16(payload, 2 * i, timeout_ms_by_motor[i]);
+  return encode_board_frame(BoardCommand::kTimeout, std::span(payload).first(2 * timeout_ms_by_motor.size()), out);
 }
 
 std::size_t BoardFrameSplitter::feed(std::span<const std::uint8_t> bytes) noexcept {

@@ -25,11 +25,15 @@ struct SlotForm {
   std::span<const Field> fields;
 };
 
-constexpr std::array<SlotForm, 6> kSlotForms{{
+constexpr std::array<SlotForm, 9> kSlotForms{{
     {BoardCommand::kPosition, Mode::kPosition, layouts::kPositionFields},
     {BoardCommand::kVelocity, Mode::kVelocity, layouts::kVelocityFields},
     {BoardCommand::kTorque, Mode::kTorque, layouts::kTorqueFields},
+    {BoardCommand::kVoltage, Mode::kVoltage, layouts::kVoltageQFields},
+    {BoardCommand::kCurrent, Mode::kCurrent, layouts::kCurrentQFields},
     {BoardCommand::kPositionVelocityTorqueMax, Mode::kPositionVelocityTorque, layouts::kPositionVelocityTorqueFields},
+    // kp / kd without a torque: the motor holds the impedance, no feed-forward.
+    {BoardCommand::kPositionVelocityKpKd, Mode::kMit, layouts::kPositionVelocityGainFields},
     {BoardCommand::kPositionVelocityTorqueKpKdV1, Mode::kMit, layouts::kMitFields},
     {BoardCommand::kPositionVelocityTorqueKpKd, Mode::kMit, layouts::kMitFields},
 }};
@@ -50,7 +54,8 @@ std::uint16_t raw16(double counts, std::int16_t limit = kBoardLimit) {
 
 /// A field's board count as the SDK's motor.cc computes it: position (float)rad / 2π_f × 1e4 and
 /// velocity × 4e3 (the quotient in float, the product in double), torque (τ − d) / k in double,
-/// gains (float)(kp / k_pid) × 10 × 2π_f in float and saturated at ±32700; then truncated
+/// gains (float)(kp / k_pid) × 10 × 2π_f in float and saturated at ±32700, volts and amps
+/// (float) × 10 in float; then truncated
 /// (saturated at ±32767 where the SDK's cast wraps). NaN reads as the board's "unset" (0x8000
 /// for a position, 0 for the rest).
 std::uint16_t board_raw(Field field, double value, const MotorScaling& scaling) {
@@ -67,6 +72,8 @@ std::uint16_t board_raw(Field field, double value, const MotorScaling& scaling) 
       const auto per_unit = static_cast<float>(static_cast<double>(given) / scaling.gain_factor);
       return raw16(static_cast<double>(per_unit * 10.0F * units::kTwoPiF), kBoardGainLimit);
     }
+    case units::Quantity::kElectrical:
+      return raw16(static_cast<double>(given * 10.0F));
     default:
       return raw16(static_cast<double>(given));
   }
@@ -85,6 +92,8 @@ double board_value(Field field, std::uint16_t raw, const MotorScaling& scaling) 
       return static_cast<float>(counts * scaling.torque_per_unit + scaling.torque_offset_nm);
     case units::Quantity::kGain:
       return counts / 10.0 / units::kTwoPiF * scaling.gain_factor;
+    case units::Quantity::kElectrical:
+      return counts / 10.0;
     default:
       return counts;
   }

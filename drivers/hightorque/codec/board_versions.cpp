@@ -1,7 +1,10 @@
 // The board's per-motor answers: kVersion (each motor's firmware version, one 4-byte record per
-// motor) and the acknowledgements of kResetZero / kSave / kReloadConfig (one id byte per motor).
+// motor) and the acknowledgements of kResetZero / kSave / kReloadConfig (one id byte per motor);
+// the board's own firmware (its kSetMotorCount answer) and the function version it is given
+// (the SDK's lively_serial.cc and robot.cc).
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "hightorque_codec.hpp"
@@ -35,6 +38,35 @@ std::size_t decode_board_versions(std::span<const std::uint8_t> payload, std::sp
         .motor = payload[at], .major = payload[at + 1], .minor = payload[at + 2], .patch = payload[at + 3]};
   }
   return written;
+}
+
+BoardFunction board_function_for(const FirmwareVersion& lowest) noexcept {
+  const auto at_least = [&](int major, int minor, int patch) {
+    if (lowest.major != major) return lowest.major > major;
+    if (lowest.minor != minor) return lowest.minor > minor;
+    return lowest.patch >= patch;
+  };
+  if (at_least(4, 4, 6)) return BoardFunction::kV5;
+  if (at_least(4, 2, 3)) return BoardFunction::kV4;
+  if (at_least(4, 2, 2)) return BoardFunction::kV3;
+  if (at_least(4, 2, 0)) return BoardFunction::kV2;
+  return BoardFunction::kV1;
+}
+
+std::optional<BoardFirmware> decode_board_firmware(std::span<const std::uint8_t> payload) noexcept {
+  constexpr std::size_t kMajorAt = 2;
+  constexpr std::size_t kMinorAt = 3;
+  if (payload.size() <= kMinorAt) return std::nullopt;
+  return BoardFirmware{.major = payload[kMajorAt], .minor = payload[kMinorAt]};
+}
+
+std::size_t encode_board_firmware(BoardFirmware firmware, std::span<std::uint8_t> out) noexcept {
+  if (out.size() < 4 || !fits_a_byte(firmware.major) || !fits_a_byte(firmware.minor)) return 0;
+  out[0] = 0;
+  out[1] = 0;
+  out[2] = static_cast<std::uint8_t>(firmware.major);
+  out[3] = static_cast<std::uint8_t>(firmware.minor);
+  return 4;
 }
 
 std::size_t encode_board_versions(std::span<const FirmwareVersion> versions, std::span<std::uint8_t> out) noexcept {

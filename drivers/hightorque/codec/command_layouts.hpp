@@ -139,6 +139,8 @@ inline constexpr std::array<Field, 2> kVelocityAccelerationFields{Field::kVeloci
 inline constexpr std::array<Field, 3> kPositionVelocityTorqueFields{Field::kPosition, Field::kVelocity, Field::kTorque};
 inline constexpr std::array<Field, 3> kPositionVelocityAccelerationFields{Field::kPosition, Field::kVelocity,
                                                                           Field::kAcceleration};
+inline constexpr std::array<Field, 4> kPositionVelocityGainFields{Field::kPosition, Field::kVelocity, Field::kKp,
+                                                                  Field::kKd};
 inline constexpr std::array<Field, 5> kMitFields{Field::kPosition, Field::kVelocity, Field::kTorque, Field::kKp,
                                                  Field::kKd};
 
@@ -227,6 +229,14 @@ inline constexpr std::array<BlockForm, 13> kBlockForms{{
 inline const BlockForm* block_form_for_mode(Mode mode) noexcept {
   for (const BlockForm& form : kBlockForms) {
     if (form.kind == MotorRequest::Kind::kCommand && form.mode == mode) return &form;
+  }
+  return nullptr;
+}
+
+/// The flag form of a system request (kSoftReboot, kSetZero); nullptr if it has none.
+inline const BlockForm* block_form_for_request(MotorRequest::Kind kind) noexcept {
+  for (const BlockForm& form : kBlockForms) {
+    if (form.kind == kind && kind != MotorRequest::Kind::kCommand) return &form;
   }
   return nullptr;
 }

@@ -130,6 +130,14 @@ std::size_t encode_block(std::span<const BlockSlot> slots, Query query,
                          std::span<const MotorScaling> scaling_by_motor_id, int motor_count,
                          std::span<transport::CanMessage> out) noexcept;
 
+/// The reboot (0x87) and rezero (0x88) blocks for a bus of motors 1…`motor_count`: one flag
+/// byte per motor (1 = do it) as motor_many.c sends them, the query code last. Returns the
+/// number of frames written (1), or 0 if `motors` is empty, names a motor outside
+/// 1…motor_count, or `out` is empty.
+enum class BlockSystem : std::uint8_t { kSoftReboot, kSetZero };
+std::size_t encode_block_system(BlockSystem what, std::span<const int> motors, Query query, int motor_count,
+                                std::span<transport::CanMessage> out) noexcept;
+
 /// System commands (int16 id to one motor).
 transport::CanMessage encode_soft_reboot(int motor) noexcept;    // 03 03 01
 transport::CanMessage encode_save_to_flash(int motor) noexcept;  // 03 03 02
@@ -265,16 +273,44 @@ enum class BoardCommand : std::uint8_t {
   kMotorState = 0x06,  // board → host: every motor's record without mode / fault (7 bytes)
   kReloadConfig = 0x07,
   kReboot = 0x08,
+  kRunToZero = 0x09,    // every motor (0x7F) or one drives back to its zero position
   kMotorState2 = 0x0A,  // board → host: every motor's state2 record (9 bytes)
   kVersion = 0x0B,
+  kSetFunctionVersion = 0x0C,  // host → board: BoardFunction; the board echoes the one it took
+  kFdcanReset = 0x0E,          // board firmware ≥ 4.1: restarts its CAN-FD controllers (payload 0)
   kPosition = 0x80,
   kVelocity = 0x81,
   kTorque = 0x82,
+  kVoltage = 0x83,  // q-axis volts × 10 per motor
+  kCurrent = 0x84,  // q-axis amps × 10 per motor
   kTimeout = 0x85,
   kPositionVelocityTorqueMax = 0x90,
   kPositionVelocityTorqueKpKdV1 = 0x93,  // the SDK's control_type 9: pos, vel, τ, kp, kd per motor
+  kPositionVelocityKpKd = 0x9E,          // pos, vel, kp, kd per motor
+  kPositionVelocityAcceleration = 0xAD,  // not encoded: docs/drivers/hightorque.md "Conformance"
   kPositionVelocityTorqueKpKd = 0xB0,    // control_type 12, boards with function version 5: the same slots
 };
+
+/// The board's function version (the SDK's fun_version, robot.cc): what the board's firmware
+/// does, set by the host from the lowest motor firmware of every port (0x0C).
+enum class BoardFunction : std::uint8_t { kV1 = 1, kV2 = 2, kV3 = 3, kV4 = 4, kV5 = 5 };
+/// fun_v5 from motor firmware 4.4.6 (0xB0 accepted), v4 from 4.2.3 (state requests 0x0A), v3
+/// from 4.2.2, v2 from 4.2.0, else v1 (the SDK's motor_version_detection()).
+BoardFunction board_function_for(const FirmwareVersion& lowest_motor_firmware) noexcept;
+/// The board's own firmware in its 0x05 answer (bytes 2 and 3 of the payload: major, tenths);
+/// nullopt for a payload shorter than 4 bytes.
+struct BoardFirmware {
+  int major = 0;
+  int minor = 0;
+  int tenths() const noexcept { return major * 10 + minor; }
+};
+std::optional<BoardFirmware> decode_board_firmware(std::span<const std::uint8_t> payload) noexcept;
+/// The board's side: the 0x05 answer carrying `firmware` (bytes 0 and 1 are 0); its size.
+std::size_t encode_board_firmware(BoardFirmware firmware, std::span<std::uint8_t> out) noexcept;
+/// HighTorque's "General" motor constants (motor.cc mGeneral): the SDK applies them to every
+/// motor of firmware major 5 whatever model the configuration names.
+inline constexpr MotorScaling kGeneralBoardScaling{
+    .torque_per_unit = 0.005, .torque_offset_nm = 0.0, .gain_factor = 0.5};
 
 /// Writes one framed packet into `out`; returns its size, or 0 if it does not fit or the
 /// payload exceeds kMaxBoardPayload.
@@ -290,13 +326,18 @@ std::size_t encode_board_admin(BoardCommand command, int motor, std::span<std::u
 /// slots of motors 1…motor_count (the SDK's canport::set_time_out). Returns its size, 0 if it
 /// does not fit or motor_count is outside 1…kMaxMotorId.
 std::size_t encode_board_timeout(std::uint16_t timeout_ms, int motor_count, std::span<std::uint8_t> out) noexcept;
+/// The same packet with a timeout per motor (the SDK's motor::set_motorout): element i is motor
+/// i + 1's, in ms (0 disarms); 0 if it does not fit or the count is outside 1…kMaxMotorId.
+std::size_t encode_board_timeouts(std::span<const std::uint16_t> timeout_ms_by_motor,
+                                  std::span<std::uint8_t> out) noexcept;
 
 /// One port's command slots as the board SDK keeps them (motor.cc): a slot for every motor id
 /// 1…motor_count, each the command's int16 values wide, in id order. A command other than the
 /// last one resets every slot (position 0x8000, the rest 0); then each update overwrites the
 /// slots of the motors it commands, and every other motor keeps the values it was last sent.
 /// For kPositionVelocityTorqueKpKd / kPositionVelocityTorqueKpKdV1 (5 values),
-/// kPositionVelocityTorqueMax (3 values) and kPosition / kVelocity / kTorque (1 value), in the
+/// kPositionVelocityKpKd (4), kPositionVelocityTorqueMax (3 values) and kPosition / kVelocity /
+/// kTorque / kVoltage / kCurrent (1 value; volts and amps (float) × 10), in the
 /// SDK's units and arithmetic: position 1e-4 rev, velocity 2.5e-4 rev/s, τ (τ − torque_offset_nm)
 /// / torque_per_unit, gains kp / gain_factor × 10 × 2π saturated at ±32700 (NaN fields leave
 /// the slot's "unset" value: position 0x8000, the rest 0).

@@ -1,15 +1,22 @@
-// A bus of motors behind the livelybot USB-CDC CAN board: one tty is one CAN port. Each tick is
-// one 0xB0 slot packet (position, velocity, torque, kp, kd per motor id; a motor not commanded
-// this tick keeps the values it was last sent, as in the vendor's SDK); the board answers with
-// a motor-state packet. Port-wide admin packets stand in for the per-motor system commands the
-// board does not have (docs/drivers/hightorque.md says which).
+// A bus of motors behind the livelybot USB-CDC CAN board: one tty is one CAN port. open() runs
+// the vendor's start-up (board_start_up.hpp), which decides the command and state packets: each
+// tick is one 0xB0 slot packet (0x93 where a motor's firmware is older than 4.4.6; position,
+// velocity, torque, kp, kd per motor id; a motor not commanded this tick keeps the values it was
+// last sent, as in the vendor's SDK); the board answers with a motor-state packet (0x0A, or 0x06
+// below function version 4). Port-wide admin packets stand in for the per-motor system commands
+// the board does not have (docs/drivers/hightorque.md says which).
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "driver/board_start_up.hpp"
 #include "driver/motor_bus_factory.hpp"
 
 namespace robotd::hightorque {
@@ -20,17 +27,31 @@ constexpr int kMaxReadsPerReceive = 64;
 
 class BoardBus final : public MotorBus {
  public:
-  BoardBus(const transport::SerialConfig& config, const ScalingById& scaling, int highest_id)
-      : port_(config), scaling_(scaling), highest_id_(highest_id), slots_(highest_id) {}
+  BoardBus(const transport::SerialConfig& config, const ScalingById& scaling, std::vector<int> motor_ids,
+           std::chrono::milliseconds start_up_timeout)
+      : port_(config),
+        configured_scaling_(scaling),
+        scaling_(scaling),
+        motor_ids_(std::move(motor_ids)),
+        highest_id_(motor_ids_.empty() ? 0 : std::ranges::max(motor_ids_)),
+        start_up_timeout_(start_up_timeout),
+        slots_(highest_id_) {}
 
-  Result<void> open() override {
-    auto opened = port_.open();
-    if (opened) port_.flush();
+  Result<void> open(const driver::AbortFlag& abort) override {
+    if (auto opened = port_.open(); !opened) return opened;
+    port_.flush();
+    auto setup = start_up_board(port_, motor_ids_, start_up_timeout_, abort);
+    if (!setup) {
+      port_.close();
+      return setup.error();
+    }
+    apply(setup.value());
     slots_.reset();
+    timeouts_.fill(0);
     splitter_ = BoardFrameSplitter{};
     counted_crc_errors_ = 0;
     counted_skipped_bytes_ = 0;
-    return opened;
+    return {};
   }
   void close() noexcept override { port_.close(); }
   std::string describe() const override { return "board " + port_.describe(); }
@@ -38,14 +59,13 @@ class BoardBus final : public MotorBus {
   BusIo send_commands(std::span<const BlockSlot> commanded, std::span<const int> /*idle*/,
                       Query /*query*/) noexcept override {
     // With no command at all, a state request keeps the feedback coming.
-    if (commanded.empty()) return send_admin(BoardCommand::kMotorState2);
-    const std::span<const std::uint8_t> payload =
-        slots_.update(BoardCommand::kPositionVelocityTorqueKpKd, commanded, scaling_);
+    if (commanded.empty()) return send_admin(state_request_);
+    const std::span<const std::uint8_t> payload = slots_.update(mit_command_, commanded, scaling_);
     if (payload.empty()) {
       ++frames_dropped_;
       return BusIo::kBusy;
     }
-    return send_packet(BoardCommand::kPositionVelocityTorqueKpKd, payload);
+    return send_packet(mit_command_, payload);
   }
 
   BusIo send_brake(std::span<const int> /*motors*/, Query /*query*/) noexcept override {
@@ -55,7 +75,7 @@ class BoardBus final : public MotorBus {
   BusIo send_system(const SystemRequest& request) noexcept override {
     switch (request.kind) {
       case SystemRequest::Kind::kQuery:
-        return send_admin(BoardCommand::kMotorState2);
+        return send_admin(state_request_);
       case SystemRequest::Kind::kStop:
         return send_admin(BoardCommand::kStop);
       case SystemRequest::Kind::kSetZero:
@@ -65,10 +85,12 @@ class BoardBus final : public MotorBus {
       case SystemRequest::Kind::kSoftReboot:
         return send_admin(BoardCommand::kReboot);
       case SystemRequest::Kind::kCommandTimeout: {
-        // 0x85 is a slot command: every motor of the port gets the timeout (LE16 ms).
+        // 0x85 is a slot command: each motor's timeout (LE16 ms) in its slot, the others' kept.
+        if (request.motor < kMinMotorId || request.motor > highest_id_) return BusIo::kBusy;
+        timeouts_.at(static_cast<std::size_t>(request.motor - 1)) = static_cast<std::uint16_t>(request.value);
         std::array<std::uint8_t, kMaxPacket> packet{};
         return write_packet(std::span(packet).first(
-            encode_board_timeout(static_cast<std::uint16_t>(request.value), highest_id_, packet)));
+            encode_board_timeouts(std::span(timeouts_).first(static_cast<std::size_t>(highest_id_)), packet)));
       }
       case SystemRequest::Kind::kInfo:
         // The board answers firmware versions only; hardware version and model are not asked.
@@ -96,6 +118,20 @@ class BoardBus final : public MotorBus {
   }
 
  private:
+  /// What the start-up found: 0xB0 needs function version 5 (motor firmware 4.4.6), 0x0A
+  /// version 4; firmware-5 motors take the "General" constants whatever the config names, as
+  /// the SDK forces them (robot.cc motor_version_detection()).
+  void apply(const BoardSetup& setup) {
+    mit_command_ = setup.function >= BoardFunction::kV5 ? BoardCommand::kPositionVelocityTorqueKpKd
+                                                        : BoardCommand::kPositionVelocityTorqueKpKdV1;
+    state_request_ = setup.function >= BoardFunction::kV4 ? BoardCommand::kMotorState2 : BoardCommand::kMotorState;
+    scaling_ = configured_scaling_;
+    for (const int id : motor_ids_) {
+      const auto index = static_cast<std::size_t>(id);
+      if (setup.motor_firmware.at(index).major == 5) scaling_.at(index) = kGeneralBoardScaling;
+    }
+  }
+
   /// Packets that failed their CRC count as dropped, bytes outside any packet as skipped.
   void count_junk() noexcept {
     frames_dropped_ += splitter_.crc_errors() - counted_crc_errors_;
@@ -186,8 +222,14 @@ class BoardBus final : public MotorBus {
   }
 
   transport::SerialPort port_;
-  ScalingById scaling_;
+  ScalingById configured_scaling_;
+  ScalingById scaling_;  // the configured one, firmware-5 motors "General"
+  std::vector<int> motor_ids_;
   int highest_id_;
+  std::chrono::milliseconds start_up_timeout_;
+  BoardCommand mit_command_ = BoardCommand::kPositionVelocityTorqueKpKd;
+  BoardCommand state_request_ = BoardCommand::kMotorState2;
+  std::array<std::uint16_t, kMaxMotorId> timeouts_{};
   BoardSlotBuffer slots_;
   BoardFrameSplitter splitter_;
   std::uint64_t counted_crc_errors_ = 0;
@@ -197,8 +239,8 @@ class BoardBus final : public MotorBus {
 }  // namespace
 
 std::unique_ptr<MotorBus> make_board_bus(const transport::SerialConfig& config, const ScalingById& scaling,
-                                         int highest_id) {
-  return std::make_unique<BoardBus>(config, scaling, highest_id);
+                                         std::vector<int> motor_ids, std::chrono::milliseconds start_up_timeout) {
+  return std::make_unique<BoardBus>(config, scaling, std::move(motor_ids), start_up_timeout);
 }
 
 }  // namespace robotd::hightorque

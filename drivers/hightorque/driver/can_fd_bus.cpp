@@ -22,7 +22,7 @@ class CanFdBus final : public MotorBus {
   CanFdBus(const transport::CanLinkConfig& config, const ScalingById& scaling, Width width, int highest_id)
       : transport_(transport::make_can_transport(config)), scaling_(scaling), width_(width), highest_id_(highest_id) {}
 
-  Result<void> open() override { return transport_->open(); }
+  Result<void> open(const driver::AbortFlag& /*abort*/) override { return transport_->open(); }
   void close() noexcept override { transport_->close(); }
   std::string describe() const override { return transport_->describe(); }
 

@@ -106,7 +106,8 @@ Result<void> HighTorqueDriver::connect_and_start() {
 
 Result<void> HighTorqueDriver::open_and_probe() {
   for (std::size_t b = 0; b < buses_.size(); ++b) {
-    if (auto opened = buses_[b]->open(); !opened) {
+    if (auto opened = buses_[b]->open(abort_); !opened) {
+      if (abort_.requested()) return opened;  // a board start-up pre-empted: the caller's verdict names it
       return make_error(ErrorCode::kNotAvailable, "bus '" + params_.buses[b].name + "' (" + buses_[b]->describe() +
                                                       "): " + opened.error().message);
     }

@@ -1,6 +1,9 @@
 #include "driver/motor_bus.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <utility>
+#include <vector>
 
 #include "driver/motor_bus_factory.hpp"
 
@@ -31,13 +34,17 @@ transport::CanMessage system_frame(const SystemRequest& request, Width width, co
 
 std::unique_ptr<MotorBus> make_motor_bus(const HighTorqueParams& params, std::size_t bus) {
   ScalingById scaling{};
-  int highest_id = 0;
+  std::vector<int> ids;
   for (const std::size_t motor : params.motors_on(bus)) {
     scaling[static_cast<std::size_t>(params.motors[motor].id)] = params.motors[motor].scaling;
-    highest_id = std::max(highest_id, params.motors[motor].id);
+    ids.push_back(params.motors[motor].id);
   }
+  std::ranges::sort(ids);
+  const int highest_id = ids.empty() ? 0 : ids.back();
   const BusParams& config = params.buses[bus];
-  if (config.kind == BusParams::Kind::kBoard) return make_board_bus(config.serial, scaling, highest_id);
+  if (config.kind == BusParams::Kind::kBoard) {
+    return make_board_bus(config.serial, scaling, std::move(ids), std::chrono::milliseconds(params.connect_timeout_ms));
+  }
   return make_can_fd_bus(config.can, scaling, params.width, highest_id);
 }
 

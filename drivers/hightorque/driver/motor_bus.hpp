@@ -11,6 +11,7 @@
 
 #include "codec/hightorque_codec.hpp"
 #include "driver/hightorque_params.hpp"
+#include "robotd/driver/abort_flag.hpp"
 #include "robotd/result.hpp"
 
 namespace robotd::hightorque {
@@ -51,7 +52,8 @@ class MotorBus {
  public:
   virtual ~MotorBus() = default;
 
-  virtual Result<void> open() = 0;
+  /// Opens the link (blocking; the board runs its start-up here); `abort` pre-empts the waiting.
+  virtual Result<void> open(const driver::AbortFlag& abort) = 0;
   virtual void close() noexcept = 0;
   /// "stand-in /tmp/legs.sock", "board /dev/ttyACM0", for messages.
   virtual std::string describe() const = 0;

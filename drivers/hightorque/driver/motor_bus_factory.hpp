@@ -2,7 +2,9 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <memory>
+#include <vector>
 
 #include "driver/motor_bus.hpp"
 #include "robotd/transport/can_transport.hpp"
@@ -20,7 +22,9 @@ transport::CanMessage system_frame(const SystemRequest& request, Width width, co
 /// every motor from id 1 to it, as the vendor's SDKs do).
 std::unique_ptr<MotorBus> make_can_fd_bus(const transport::CanLinkConfig& config, const ScalingById& scaling,
                                           Width width, int highest_id);
+/// `motor_ids`: the port's motors (ascending); open() runs the board start-up for them, each
+/// step bounded by `start_up_timeout`.
 std::unique_ptr<MotorBus> make_board_bus(const transport::SerialConfig& config, const ScalingById& scaling,
-                                         int highest_id);
+                                         std::vector<int> motor_ids, std::chrono::milliseconds start_up_timeout);
 
 }  // namespace robotd::hightorque

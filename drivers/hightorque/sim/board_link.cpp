@@ -13,12 +13,15 @@ namespace {
 constexpr int kMaxReadsPerPass = 64;
 constexpr std::size_t kGarbageBytesPerPass = 256;  // bytes
 
+constexpr int kFdcanResetFrom = 41;  // board firmware 4.1, in tenths
+
 bool slot_command(BoardCommand command) {
   switch (command) {
     case BoardCommand::kPosition:
     case BoardCommand::kVelocity:
     case BoardCommand::kTorque:
     case BoardCommand::kPositionVelocityTorqueMax:
+    case BoardCommand::kPositionVelocityTorqueKpKdV1:
     case BoardCommand::kPositionVelocityTorqueKpKd:
       return true;
     default:
@@ -75,8 +78,59 @@ void Bus::for_selected(std::span<const std::uint8_t> payload, std::int64_t now_n
   }
 }
 
+bool Bus::serve_board_start_up(const BoardFrame& frame) {
+  const std::span<const std::uint8_t> payload = frame.bytes();
+  switch (frame.command) {
+    case BoardCommand::kSetMotorCount: {  // the host names the port's motor count; answered with the firmware
+      std::array<std::uint8_t, 4> reply{};
+      reply_packet(frame.command, std::span(reply).first(encode_board_firmware(board_firmware_, reply)));
+      return true;
+    }
+    case BoardCommand::kFdcanReset:
+      if (board_firmware_.tenths() < kFdcanResetFrom) {
+        ++bad_frames_;  // older boards do not know it
+      } else {
+        ++fdcan_resets_;
+      }
+      return true;
+    case BoardCommand::kVersion: {
+      std::vector<FirmwareVersion> versions;
+      for (const SimMotor& motor : motors_) {
+        if (motor.muted()) continue;
+        FirmwareVersion version = board_motor_firmware_.at(static_cast<std::size_t>(motor.id()));
+        version.motor = motor.id();
+        versions.push_back(version);
+      }
+      std::array<std::uint8_t, kMaxBoardPayload> versions_payload{};
+      const std::size_t size = encode_board_versions(versions, versions_payload);
+      reply_packet(frame.command, std::span<const std::uint8_t>(versions_payload.data(), size));
+      return true;
+    }
+    case BoardCommand::kSetFunctionVersion: {  // echoes the version it now has
+      const int asked = payload.empty() ? 0 : payload[0];
+      if (asked >= static_cast<int>(BoardFunction::kV1) && asked <= static_cast<int>(BoardFunction::kV5)) {
+        function_ = static_cast<BoardFunction>(asked);
+      } else {
+        ++bad_frames_;
+      }
+      const std::array<std::uint8_t, 1> echo{static_cast<std::uint8_t>(function_)};
+      reply_packet(frame.command, echo);
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
 void Bus::serve_board(const BoardFrame& frame, std::int64_t now_ns) {
   const std::span<const std::uint8_t> payload = frame.bytes();
+  if (serve_board_start_up(frame)) return;
+  // What the function version set at start-up does not allow, this board ignores.
+  if ((frame.command == BoardCommand::kPositionVelocityTorqueKpKd && function_ < BoardFunction::kV5) ||
+      (frame.command == BoardCommand::kMotorState2 && function_ < BoardFunction::kV4)) {
+    ++bad_frames_;
+    return;
+  }
   if (slot_command(frame.command)) {
     const std::size_t count = decode_board_slots(frame.command, payload, board_scaling_, requests_);
     if (count == 0) {
@@ -89,7 +143,8 @@ void Bus::serve_board(const BoardFrame& frame, std::int64_t now_ns) {
       motor->heard(now_ns);
       motor->command(requests_.at(r));
     }
-    reply_motor_states(BoardCommand::kMotorState2);  // with mode and fault: the watchdog shows
+    // With mode and fault from function version 4 on: the watchdog shows.
+    reply_motor_states(function_ >= BoardFunction::kV4 ? BoardCommand::kMotorState2 : BoardCommand::kMotorState);
     return;
   }
   std::array<std::uint8_t, kMaxMotorId + 1> answer{};
@@ -118,38 +173,22 @@ void Bus::serve_board(const BoardFrame& frame, std::int64_t now_ns) {
       return;
     case BoardCommand::kReloadConfig:
       return;
-    case BoardCommand::kTimeout: {
-      if (payload.size() < 2) {
-        ++bad_frames_;
-        return;
-      }
-      const auto timeout_ms = static_cast<std::uint16_t>(payload[0] | (payload[1] << 8U));
-      for_selected({}, now_ns, [&](SimMotor& motor) { motor.set_command_timeout(timeout_ms); });
+    case BoardCommand::kTimeout:  // a slot per motor id (LE16 ms); motors past the payload keep theirs
+      for_selected({}, now_ns, [&](SimMotor& motor) {
+        const auto at = static_cast<std::size_t>(motor.id() - 1) * 2;
+        if (at + 1 < payload.size()) {
+          motor.set_command_timeout(static_cast<std::uint16_t>(payload[at] | (payload[at + 1] << 8U)));
+        }
+      });
       return;
-    }
-    case BoardCommand::kSetMotorCount: {
-      // [result, count, board major, minor, patch]: result 0 when the count is 1 … 30.
-      const int count = payload.empty() ? 0 : payload[0];
-      const bool valid = count >= kMinMotorId && count <= kMaxMotorId;
-      const std::array<std::uint8_t, 5> reply{
-          static_cast<std::uint8_t>(valid ? 0 : 1), static_cast<std::uint8_t>(count),
-          static_cast<std::uint8_t>(kBoardFirmware.major), static_cast<std::uint8_t>(kBoardFirmware.minor),
-          static_cast<std::uint8_t>(kBoardFirmware.patch)};
-      reply_packet(frame.command, reply);
+    case BoardCommand::kRunToZero:  // to the zero position, held in position mode
+      for_selected(payload, now_ns, [&](SimMotor& motor) {
+        MotorRequest request = mode_request(motor.id(), Mode::kPosition);
+        request.command.position_rad = 0;
+        request.has_position = true;
+        motor.command(request);
+      });
       return;
-    }
-    case BoardCommand::kVersion: {
-      std::vector<FirmwareVersion> versions;
-      for (const SimMotor& motor : motors_) {
-        if (motor.muted()) continue;
-        versions.push_back(FirmwareVersion{
-            .motor = motor.id(), .major = firmware_.major, .minor = firmware_.minor, .patch = firmware_.patch});
-      }
-      std::array<std::uint8_t, kMaxBoardPayload> versions_payload{};
-      const std::size_t size = encode_board_versions(versions, versions_payload);
-      reply_packet(frame.command, std::span<const std::uint8_t>(versions_payload.data(), size));
-      return;
-    }
     case BoardCommand::kMotorState:  // the host asks: answered in kind
     case BoardCommand::kMotorState2:
       reply_motor_states(frame.command);

@@ -1,5 +1,7 @@
 #include "bus.hpp"
 
+#include <algorithm>
+
 #include <spdlog/spdlog.h>
 
 #include "robotd/transport/can_bus.hpp"
@@ -23,6 +25,22 @@ Bus::Bus(BusSpec spec, const SimOptions& options, std::int64_t now_ns)
   if (torque_per_unit <= 0) torque_per_unit = kDefaultBoardTorquePerUnit;
   board_scaling_.fill(
       MotorScaling{.torque_per_unit = torque_per_unit, .torque_offset_nm = 0, .gain_factor = options.gain_factor});
+  board_firmware_ = options.board_firmware;
+  board_motor_firmware_.fill(kBoardMotorFirmware);
+  for (const BoardMotorFirmware& given : options.board_motor_firmware) {
+    for (const int id : spec_.ids) {
+      if (given.ids.empty() || std::ranges::find(given.ids, id) != given.ids.end()) {
+        board_motor_firmware_.at(static_cast<std::size_t>(id)) = given.version;
+      }
+    }
+  }
+  // Firmware-5 motors speak the "General" constants on the board, whatever their model.
+  for (const int id : spec_.ids) {
+    const auto index = static_cast<std::size_t>(id);
+    if (index < board_scaling_.size() && board_motor_firmware_.at(index).major == 5) {
+      board_scaling_.at(index) = kGeneralBoardScaling;
+    }
+  }
   packet_.resize(kBoardHeaderSize + kMaxBoardPayload);
   if (spec_.kind != BusSpec::Kind::kBoard) {
     transport::CanLinkConfig link;

@@ -21,9 +21,10 @@
 
 namespace robotd::hightorque::sim {
 
-/// The hardware version 00 05 reports, and the board's own firmware version (0x05 reply).
+/// The hardware version 00 05 reports.
 inline constexpr FirmwareVersion kHardwareVersion{.motor = 0, .major = 1, .minor = 0, .patch = 0};
-inline constexpr FirmwareVersion kBoardFirmware{.motor = 0, .major = 6, .minor = 0, .patch = 0};
+/// What a board motor reports (0x0B) unless --board-motor-firmware says otherwise: function v5.
+inline constexpr FirmwareVersion kBoardMotorFirmware{.motor = 0, .major = 4, .minor = 4, .patch = 6};
 
 class Bus {
  public:
@@ -67,6 +68,10 @@ class Bus {
   std::int64_t drop_pending() const { return drop_pending_; }
   std::int64_t garbage_pending() const { return garbage_pending_; }
   bool host_connected() const { return host_connected_; }
+  // The board's start-up state (board buses only).
+  const BoardFirmware& board_firmware() const { return board_firmware_; }
+  BoardFunction function_version() const { return function_; }
+  std::uint64_t fdcan_resets() const { return fdcan_resets_; }
 
  private:
   bool board() const { return spec_.kind == BusSpec::Kind::kBoard; }
@@ -91,6 +96,8 @@ class Bus {
   void reply_motor_states(BoardCommand command);
   void send_bytes(std::span<const std::uint8_t> bytes);
   void send_board_garbage();
+  /// The host's start-up packets (0x05, 0x0B, 0x0C, 0x0E); false for any other command.
+  bool serve_board_start_up(const BoardFrame& frame);
 
   BusSpec spec_;
   std::string model_;
@@ -99,6 +106,12 @@ class Bus {
   MotorScaling scaling_;                                       // CAN-FD
   std::array<MotorScaling, kMaxMotorId + 1> board_scaling_{};  // by motor id
   std::array<MotorRequest, kMaxMotorId + 1> requests_{};       // decode_request's output
+  BoardFirmware board_firmware_;
+  std::array<FirmwareVersion, kBroadcastId + 1> board_motor_firmware_{};  // by motor id
+  /// What the host last set (0x0C): 0xB0 needs v5, state requests 0x0A v4. A board starts at v1
+  /// and keeps what it was given across a link drop (it stays powered).
+  BoardFunction function_ = BoardFunction::kV1;
+  std::uint64_t fdcan_resets_ = 0;
 
   std::unique_ptr<transport::CanTransport> can_;
   transport::PseudoTerminal pty_;

@@ -159,6 +159,10 @@ json Simulator::state() const {
                      {"replies_dropped", bus->replies_dropped()},
                      {"drop_pending", bus->drop_pending()},
                      {"garbage_pending", bus->garbage_pending()},
+                     {"board_firmware",
+                      std::to_string(bus->board_firmware().major) + "." + std::to_string(bus->board_firmware().minor)},
+                     {"function_version", static_cast<int>(bus->function_version())},
+                     {"fdcan_resets", bus->fdcan_resets()},
                      {"motors", motors}});
   }
   return {{"ok", true}, {"buses", buses}};

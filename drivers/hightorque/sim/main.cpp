@@ -62,6 +62,14 @@ int main(int argc, char** argv) {
   app.add_option("--board-torque-unit", options.board_torque_per_unit,
                  "N·m per board torque unit (default: the model's SDK factor, 0.01 for unknown models)")
       ->check(CLI::Range(1e-6, 10.0));
+  std::string board_firmware = "4.3";
+  app.add_option("--board-firmware", board_firmware,
+                 "the boards' own firmware, MAJOR.MINOR (0x05 answer; 4.1 and later take the FDCAN reset 0x0E)")
+      ->capture_default_str();
+  std::vector<std::string> board_motor_firmware;
+  app.add_option("--board-motor-firmware", board_motor_firmware,
+                 "[IDS:]MAJOR.MINOR.PATCH, the firmware the board reports (0x0B) for motors IDS (all without "
+                 "IDS; default 4.4.6); repeatable, later ones win");
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
   int rt_priority = 0;
   robotd::sim_control::add_rt_priority_option(app, rt_priority);
@@ -99,6 +107,14 @@ int main(int argc, char** argv) {
   auto version = sim::parse_firmware(firmware);
   if (!version) return fail(version.error().message);
   options.firmware = version.value();
+  auto board_version = sim::parse_board_firmware(board_firmware);
+  if (!board_version) return fail(board_version.error().message);
+  options.board_firmware = board_version.value();
+  for (const std::string& text : board_motor_firmware) {
+    auto motor_firmware = sim::parse_board_motor_firmware(text);
+    if (!motor_firmware) return fail(motor_firmware.error().message);
+    options.board_motor_firmware.push_back(std::move(motor_firmware.value()));
+  }
   if (options.model.empty() || options.model.size() > 59) return fail("--model needs a name of 1 … 59 characters");
 
   robotd::sim_control::log_to_stderr(kProgram, options.quiet);

@@ -56,7 +56,7 @@ Result<BusSpec> parse_bus_spec(BusSpec::Kind kind, std::string_view text, std::s
   return BusSpec{.kind = kind, .path = std::string(text.substr(0, colon)), .ids = std::move(ids.value())};
 }
 
-Result<FirmwareVersion> parse_firmware(std::string_view text) {
+Result<FirmwareVersion> parse_firmware(std::string_view text, std::string_view option) {
   std::array<int, 3> parts{};
   std::string_view rest = text;
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -64,12 +64,38 @@ Result<FirmwareVersion> parse_firmware(std::string_view text) {
     const bool last = i + 1 == parts.size();
     const std::optional<int> part = whole_number(rest.substr(0, last ? std::string_view::npos : dot));
     if ((dot == std::string_view::npos) != last || !part || *part < 0 || *part > 255) {
-      return invalid("--firmware '" + std::string(text) + "': expected MAJOR.MINOR.PATCH, each 0 … 255, e.g. 0.3.3");
+      return invalid(std::string(option) + " '" + std::string(text) +
+                     "': expected MAJOR.MINOR.PATCH, each 0 … 255, e.g. 4.4.6");
     }
     parts.at(i) = *part;
     if (!last) rest = rest.substr(dot + 1);
   }
   return FirmwareVersion{.motor = 0, .major = parts[0], .minor = parts[1], .patch = parts[2]};
+}
+
+Result<BoardFirmware> parse_board_firmware(std::string_view text) {
+  const std::size_t dot = text.find('.');
+  const std::optional<int> major = whole_number(text.substr(0, dot));
+  const std::optional<int> minor = dot == std::string_view::npos ? std::nullopt : whole_number(text.substr(dot + 1));
+  if (!major || !minor || *major < 0 || *major > 255 || *minor < 0 || *minor > 255) {
+    return invalid("--board-firmware '" + std::string(text) + "': expected MAJOR.MINOR, each 0 … 255, e.g. 4.3");
+  }
+  return BoardFirmware{.major = *major, .minor = *minor};
+}
+
+Result<BoardMotorFirmware> parse_board_motor_firmware(std::string_view text) {
+  constexpr std::string_view kOption = "--board-motor-firmware";
+  const std::size_t colon = text.find(':');
+  BoardMotorFirmware firmware;
+  if (colon != std::string_view::npos) {
+    auto ids = parse_motor_ids(text.substr(0, colon));
+    if (!ids) return invalid(std::string(kOption) + " '" + std::string(text) + "': " + ids.error().message);
+    firmware.ids = std::move(ids.value());
+  }
+  auto version = parse_firmware(colon == std::string_view::npos ? text : text.substr(colon + 1), kOption);
+  if (!version) return version.error();
+  firmware.version = version.value();
+  return firmware;
 }
 
 double model_torque_per_unit(std::string_view model) {

@@ -197,9 +197,18 @@ TEST(HighTorqueFdcan, BlockFramesMatchTheFirmwareSdk) {
     const int motors = vector.at("motors");
     const std::string what =
         call + " on a port of " + std::to_string(motors) + " motors, slots " + vector.at("slots").dump();
+    const auto query = static_cast<Query>(vector.at("query").get<int>());
+    std::array<transport::CanMessage, 8> out{};
     const std::optional<Mode> mode = mode_of(call);
-    if (!mode) {  // the reboot and rezero blocks (0x87, 0x88)
-      verdict(kGroup, Outcome::not_implemented, what);
+    if (!mode) {  // the reboot and rezero blocks (0x87, 0x88): one flag byte per motor
+      std::vector<int> flagged;
+      for (const json& slot : vector.at("slots")) flagged.push_back(slot.at("motor"));
+      const BlockSystem what_block = call == "soft_reboot" ? BlockSystem::kSoftReboot : BlockSystem::kSetZero;
+      const std::size_t count = encode_block_system(what_block, flagged, query, motors, out);
+      json frames = vector.at("frames");
+      for (json& frame : frames) frame["data_bytes"] = static_cast<std::size_t>(motors);
+      judge(kGroup, what, frames, {out.begin(), out.begin() + static_cast<std::ptrdiff_t>(count)}, Width::kInt16, 0,
+            slot_bytes(call));
       continue;
     }
     std::vector<BlockSlot> slots;
@@ -209,9 +218,7 @@ TEST(HighTorqueFdcan, BlockFramesMatchTheFirmwareSdk) {
     json frames = vector.at("frames");
     const std::size_t total = slot_bytes(call) * static_cast<std::size_t>(motors);
     for (std::size_t i = 0; i < frames.size(); ++i) frames[i]["data_bytes"] = std::min<std::size_t>(60, total - 60 * i);
-    std::array<transport::CanMessage, 8> out{};
-    const std::size_t count =
-        encode_block(slots, static_cast<Query>(vector.at("query").get<int>()), scaling, motors, out);
+    const std::size_t count = encode_block(slots, query, scaling, motors, out);
     judge(kGroup, what, frames, {out.begin(), out.begin() + static_cast<std::ptrdiff_t>(count)}, Width::kInt16, 0,
           slot_bytes(call));
   }

@@ -1213,6 +1213,44 @@ TEST(BoardVersions, TruncatedRecordsMotorZeroAndOverflowAreNotDecoded) {
 
 // ---- Robustness --------------------------------------------------------------------------------
 
+// The SDK's motor_version_detection(): the lowest motor firmware picks the board's function version.
+TEST(BoardStartUp, FunctionVersionFollowsTheLowestMotorFirmware) {
+  const auto function = [](int major, int minor, int patch) {
+    return board_function_for(FirmwareVersion{.motor = 1, .major = major, .minor = minor, .patch = patch});
+  };
+  EXPECT_EQ(function(4, 4, 6), BoardFunction::kV5);
+  EXPECT_EQ(function(5, 0, 0), BoardFunction::kV5);
+  EXPECT_EQ(function(4, 4, 5), BoardFunction::kV4);
+  EXPECT_EQ(function(4, 2, 3), BoardFunction::kV4);
+  EXPECT_EQ(function(4, 2, 2), BoardFunction::kV3);
+  EXPECT_EQ(function(4, 2, 0), BoardFunction::kV2);
+  EXPECT_EQ(function(4, 1, 9), BoardFunction::kV1);
+  EXPECT_EQ(function(0, 3, 3), BoardFunction::kV1);
+}
+
+TEST(BoardStartUp, BoardFirmwareRoundTripsAndAShortAnswerIsNotOne) {
+  std::array<std::uint8_t, 4> payload{};
+  ASSERT_EQ(encode_board_firmware(BoardFirmware{.major = 4, .minor = 3}, payload), 4U);
+  const std::optional<BoardFirmware> firmware = decode_board_firmware(payload);
+  ASSERT_TRUE(firmware);
+  EXPECT_EQ(firmware->tenths(), 43);
+  EXPECT_FALSE(decode_board_firmware(std::span(payload).first(3)));
+}
+
+TEST(BlockSystem, RefusesNoMotorsAndMotorsOutsideTheBus) {
+  std::array<transport::CanMessage, 1> out{};
+  EXPECT_EQ(encode_block_system(BlockSystem::kSetZero, std::span<const int>{}, Query::kState, 7, out), 0U);
+  EXPECT_EQ(encode_block_system(BlockSystem::kSetZero, std::array<int, 1>{8}, Query::kState, 7, out), 0U);
+  EXPECT_EQ(encode_block_system(BlockSystem::kSetZero, std::array<int, 1>{0}, Query::kState, 7, out), 0U);
+  EXPECT_EQ(encode_block_system(BlockSystem::kSoftReboot, std::array<int, 1>{1}, Query::kState, 31, out), 0U);
+  ASSERT_EQ(encode_block_system(BlockSystem::kSoftReboot, std::array<int, 2>{1, 7}, Query::kState, 7, out), 1U);
+  // The motor's side reads the same frame back as two reboots.
+  std::array<MotorRequest, 8> requests{};
+  ASSERT_EQ(decode_request(out[0], MotorScaling{}, requests), 2U);
+  EXPECT_EQ(requests[0].kind, MotorRequest::Kind::kSoftReboot);
+  EXPECT_EQ(requests[1].motor, 7);
+}
+
 TEST(Robustness, RandomFramesAndStreamsNeverBreakADecoder) {
   std::mt19937 random(20240611);  // a fixed seed: reproducible
   std::uniform_int_distribution<int> byte(0, 255);

@@ -361,7 +361,9 @@ TEST_P(HighTorqueDriverTest, OpsReachTheMotors) {
   ASSERT_NO_FATAL_FAILURE(bring_up(params()));
   const auto info = driver_.call("motor_info", {{"motor", "b1"}});
   ASSERT_TRUE(info) << info.error().message;
-  EXPECT_EQ(info.value()["firmware_version"], "0.3.3") << info.value().dump();
+  // The board reports its motors' firmware (0x0B; the simulator's board motors are at 4.4.6).
+  const bool board = GetParam() == HighTorqueSimProcess::Link::Kind::kBoard;
+  EXPECT_EQ(info.value()["firmware_version"], board ? "4.4.6" : "0.3.3") << info.value().dump();
   const auto timeout = driver_.call("set_motor_timeout", {{"timeout_ms", 150}});
   ASSERT_TRUE(timeout) << timeout.error().message;
   EXPECT_EQ(diagnostic(driver_, "motor_timeout_ms"), "150");
@@ -497,9 +499,12 @@ TEST_P(HighTorqueDriverTest, AnAbortEndsARecoverOrResetZeroWaitingForTheMotorsAn
   // A silent bus is a lost link: recover reconnects and waits for every motor to answer.
   ASSERT_TRUE(sim_ok({{"op", "silence"}, {"bus", 1}, {"for_ms", 30000}}));
   ASSERT_TRUE(loop_->wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }, 2s));
+  // On the board the reconnect waits in the port's start-up, for the board's own answer.
+  const std::string waiting = GetParam() == HighTorqueSimProcess::Link::Kind::kBoard
+                                  ? "waiting for board serial " + sim_.bus_path(1) + " to answer its start-up"
+                                  : "waiting for the motors to answer after the link opened";
   expect_aborted(abort_after_200ms([&] { return driver_.recover(); }),
-                 "aborted: an e-stop or shutdown pre-empted recover (waiting for the motors to answer after the "
-                 "link opened)",
+                 "aborted: an e-stop or shutdown pre-empted recover (" + waiting + ")",
                  "hightorque recover (" + transport + "), a silent bus");
 
   ASSERT_TRUE(sim_ok({{"op", "silence"}, {"bus", 1}, {"for_ms", 0}}));
@@ -516,6 +521,105 @@ INSTANTIATE_TEST_SUITE_P(Transports, HighTorqueDriverTest,
                            return test_info.param == HighTorqueSimProcess::Link::Kind::kBoard ? "Board"
                                                                                               : "CanFdStandIn";
                          });
+
+// ---- The board's start-up at connect (the SDK's robot.cc / canport.cc) ------------------------
+
+/// The driver on two board ports of a simulator started with `board_args`.
+class HighTorqueBoardStartUpTest : public ::testing::Test {
+ protected:
+  void start(std::vector<std::string> board_args) {
+    board_args.emplace_back("--quiet");
+    sim_ = std::make_unique<HighTorqueSimProcess>(
+        std::vector<HighTorqueSimProcess::Link>{HighTorqueSimProcess::board("1-3"), HighTorqueSimProcess::board("1-2")},
+        std::move(board_args));
+  }
+  nlohmann::json params() const {
+    nlohmann::json params = valid_params({{{"name", "a"}, {"board", {{"device", sim_->bus_path(0)}}}},
+                                          {{"name", "b"}, {"board", {{"device", sim_->bus_path(1)}}}}});
+    params["feedback_timeout_ms"] = 50;
+    params["motor_models"] = {{"5047_36", {{"torque_per_unit", 0.004938}, {"gain_factor", 1.0}}}};
+    params["motor_defaults"]["model"] = "5047_36";
+    return params;
+  }
+  Result<void> connect() {
+    if (auto configured = driver_.configure(params()); !configured) return configured;
+    return driver_.connect();
+  }
+  void run_loop() { loop_ = std::make_unique<DriverLoop>(driver_, kJoints); }
+  nlohmann::json bus_state(std::size_t bus) const { return sim_->state()["buses"][bus]; }
+  void TearDown() override {
+    loop_.reset();
+    driver_.disconnect();
+  }
+
+  std::unique_ptr<HighTorqueSimProcess> sim_;
+  HighTorqueDriver driver_;
+  std::unique_ptr<DriverLoop> loop_;
+};
+
+// Motors at 4.4.6 (the simulator's default) give function version 5: 0xB0 and 0x0A; the board's
+// firmware 4.3 takes the FDCAN reset, three times as the SDK sends it.
+TEST_F(HighTorqueBoardStartUpTest, CurrentFirmwareGetsFunctionVersion5AndTheFdcanReset) {
+  start({});
+  const auto connected = connect();
+  ASSERT_TRUE(connected) << connected.error().message;
+  for (std::size_t bus = 0; bus < 2; ++bus) {
+    EXPECT_EQ(bus_state(bus)["function_version"], 5);
+    EXPECT_EQ(bus_state(bus)["fdcan_resets"], 3);
+    EXPECT_EQ(bus_state(bus)["bad_frames"], 0);
+  }
+}
+
+// A motor at 4.2.2 brings its port to function version 3: the 5-parameter 0x93 command and state
+// requests without mode and fault (0x06); the other port keeps version 5.
+TEST_F(HighTorqueBoardStartUpTest, OlderMotorFirmwareGetsThe5ParameterCommand) {
+  start({"--board-motor-firmware", "2:4.2.2", "--board-firmware", "4.0"});
+  const auto connected = connect();
+  ASSERT_TRUE(connected) << connected.error().message;
+  EXPECT_EQ(bus_state(0)["function_version"], 3);
+  EXPECT_EQ(bus_state(1)["function_version"], 3) << "the option names motor 2 on every board port";
+  EXPECT_EQ(bus_state(0)["fdcan_resets"], 0) << "board firmware 4.0 has no FDCAN reset";
+  run_loop();
+  const std::vector<double> target{0.5, -0.3, 0.2, 0.4, -0.1};
+  loop_->set_command(position_frame(target));
+  ASSERT_TRUE(loop_->wait_for([&](DriverLoop& l) { return settled_at(l.feedback(), target); }))
+      << "0x93 never moved the motors";
+  EXPECT_EQ(bus_state(0)["bad_frames"], 0) << "the board took every packet the driver sent";
+}
+
+// Firmware-5 motors take the SDK's "General" constants whatever the config names: kp reaches
+// the motor right only with General's gain factor (0.5; the config says 1.0).
+TEST_F(HighTorqueBoardStartUpTest, FirmwareFiveMotorsUseTheGeneralConstants) {
+  start({"--board-motor-firmware", "5.0.0"});
+  const auto connected = connect();
+  ASSERT_TRUE(connected) << connected.error().message;
+  run_loop();
+  const std::vector<double> target{0.5, -0.3, 0.2, 0.4, -0.1};
+  loop_->set_command(position_frame(target));
+  ASSERT_TRUE(loop_->wait_for([&](DriverLoop& l) { return settled_at(l.feedback(), target); }));
+  EXPECT_NEAR(sim_->motor_state(1, 2)["kp"].get<double>(), 40, 0.5);
+}
+
+TEST_F(HighTorqueBoardStartUpTest, WhatRobotdCannotDriveIsAClearError) {
+  start({"--board-firmware", "3.9"});
+  auto connected = connect();
+  ASSERT_FALSE(connected);
+  EXPECT_NE(connected.error().message.find("robotd needs 4.0 or later"), std::string::npos)
+      << connected.error().message;
+  start({"--board-motor-firmware", "3:4.1.9"});
+  connected = connect();
+  ASSERT_FALSE(connected);
+  EXPECT_NE(connected.error().message.find("motor 3 has firmware 4.1.9"), std::string::npos)
+      << connected.error().message;
+}
+
+TEST_F(HighTorqueBoardStartUpTest, ABoardThatDoesNotAnswerIsAClearError) {
+  start({});
+  ASSERT_TRUE(sim_->control({{"op", "silence"}, {"bus", 0}, {"for_ms", 60000}})["ok"].get<bool>());
+  const auto connected = connect();
+  ASSERT_FALSE(connected);
+  EXPECT_NE(connected.error().message.find("no answer to 0x05"), std::string::npos) << connected.error().message;
+}
 
 // The IMU on its own serial line arrives in the same Feedback as the motors.
 TEST(HighTorqueDriverImu, TheImuSerialLineFeedsTheFeedback) {

@@ -510,11 +510,19 @@ class BoardHost {
 
 class HighTorqueBoardTest : public HighTorqueSimTest {
  protected:
-  void SetUp() override {
-    start({HighTorqueSimProcess::board("1-3")});
+  void SetUp() override { start_board(); }
+  /// A board port of motors 1–3, given function version `function` as the host's start-up does.
+  void start_board(std::vector<std::string> extra = {}, std::optional<BoardFunction> function = BoardFunction::kV5) {
+    start({HighTorqueSimProcess::board("1-3")}, std::move(extra));
     host_ = std::make_unique<BoardHost>(sim_->bus_path(0));
     auto opened = host_->open();
     ASSERT_TRUE(opened) << opened.error().message;
+    if (!function) return;
+    host_->send(BoardCommand::kSetFunctionVersion, std::array<std::uint8_t, 1>{static_cast<std::uint8_t>(*function)});
+    const auto echo = host_->receive(1);
+    ASSERT_EQ(echo.size(), 1U);
+    ASSERT_EQ(echo[0].command, BoardCommand::kSetFunctionVersion);
+    ASSERT_EQ(echo[0].payload[0], static_cast<std::uint8_t>(*function));
   }
   std::unique_ptr<BoardHost> host_;
 };
@@ -537,8 +545,8 @@ TEST_F(HighTorqueBoardTest, MitSlotsMoveTheMotorsAndTheBoardAnswersEveryState) {
   EXPECT_NEAR(motor(3)["kp"].get<double>(), 10, 0.1);
   const auto bus = sim_->state()["buses"][0];
   EXPECT_EQ(bus["kind"], "board");
-  EXPECT_EQ(bus["frames_received"], 1);
-  EXPECT_EQ(bus["frames_sent"], 1);
+  EXPECT_EQ(bus["frames_received"], 2);  // the function version, then the slots
+  EXPECT_EQ(bus["frames_sent"], 2);
 }
 
 TEST_F(HighTorqueBoardTest, APacketWithABadCrcIsIgnored) {
@@ -562,7 +570,7 @@ TEST_F(HighTorqueBoardTest, APacketWithABadCrcIsIgnored) {
 }
 
 TEST_F(HighTorqueBoardTest, TimeoutBrakesTheMotorsAndTheirStateSaysSo) {
-  const std::array<std::uint8_t, 2> timeout{100, 0};  // LE16 ms
+  const std::array<std::uint8_t, 6> timeout{0, 0, 100, 0, 0, 0};  // LE16 ms per motor: motor 2 only
   host_->send(BoardCommand::kTimeout, timeout);
   const std::array<BlockSlot, 1> slots{BlockSlot{.motor = 2, .command = mit(0, 0, 1)}};
   host_->send_slots(BoardCommand::kPositionVelocityTorqueKpKd, slots);
@@ -576,6 +584,68 @@ TEST_F(HighTorqueBoardTest, TimeoutBrakesTheMotorsAndTheirStateSaysSo) {
   ASSERT_EQ(states.size(), 3U);
   EXPECT_EQ(states[1].fault, kTimeoutFault);
   EXPECT_EQ(states[1].mode, static_cast<std::uint8_t>(Mode::kBrake));
+  EXPECT_EQ(motor(1)["fault"], 0) << "motor 1's slot disarmed its timeout";
+}
+
+// The board's side of the SDK's start-up (robot.cc, canport.cc): 0x05 answers the board's
+// firmware, 0x0E restarts its CAN-FD controllers from 4.1 on, 0x0B reports each motor's
+// firmware, 0x0C sets the function version that decides what the board accepts.
+TEST_F(HighTorqueBoardTest, StartUpPacketsAnswerAsTheBoardDoes) {
+  start_board({"--board-firmware", "4.1", "--board-motor-firmware", "4.4.6", "--board-motor-firmware", "2:4.2.3"},
+              std::nullopt);
+  host_->send(BoardCommand::kSetMotorCount, std::array<std::uint8_t, 1>{3});
+  auto answer = host_->receive(1);
+  ASSERT_EQ(answer.size(), 1U);
+  const std::optional<BoardFirmware> firmware = decode_board_firmware(answer[0].bytes());
+  ASSERT_TRUE(firmware);
+  EXPECT_EQ(firmware->tenths(), 41);
+  host_->send(BoardCommand::kFdcanReset, std::array<std::uint8_t, 1>{0});
+  host_->send(BoardCommand::kVersion, std::array<std::uint8_t, 1>{0x7F});
+  answer = host_->receive(1);
+  ASSERT_EQ(answer.size(), 1U);
+  std::array<FirmwareVersion, 3> versions{};
+  ASSERT_EQ(decode_board_versions(answer[0].bytes(), versions), 3U);
+  EXPECT_EQ(versions[0].patch, 6);
+  EXPECT_EQ(versions[1].minor, 2);
+  EXPECT_EQ(versions[1].patch, 3);
+  EXPECT_EQ(sim_->state()["buses"][0]["fdcan_resets"], 1);
+  EXPECT_EQ(sim_->state()["buses"][0]["function_version"], 1);
+  // Before the host sets function version 5, 0xB0 is ignored; at 4, 0x93 and 0x0A are served.
+  const std::array<BlockSlot, 1> slots{BlockSlot{.motor = 1, .command = mit(0.3, 10, 1)}};
+  host_->send_slots(BoardCommand::kPositionVelocityTorqueKpKd, slots);
+  EXPECT_TRUE(host_->receive(1, 150ms).empty());
+  host_->send(BoardCommand::kSetFunctionVersion, std::array<std::uint8_t, 1>{4});
+  answer = host_->receive(1);
+  ASSERT_EQ(answer.size(), 1U);
+  EXPECT_EQ(answer[0].payload[0], 4);
+  host_->send_slots(BoardCommand::kPositionVelocityTorqueKpKdV1, slots);
+  answer = host_->receive(1);
+  ASSERT_EQ(answer.size(), 1U);
+  EXPECT_EQ(answer[0].command, BoardCommand::kMotorState2);
+  ASSERT_TRUE(wait_until([] {}, [&] { return std::abs(motor(1)["position_rad"].get<double>() - 0.3) < 0.01; }, 3s));
+  EXPECT_EQ(sim_->state()["buses"][0]["bad_frames"], 1);  // the early 0xB0
+}
+
+TEST_F(HighTorqueBoardTest, BoardsBeforeFirmware41DoNotKnowTheFdcanReset) {
+  start_board({"--board-firmware", "4.0"}, BoardFunction::kV2);
+  host_->send(BoardCommand::kFdcanReset, std::array<std::uint8_t, 1>{0});
+  // Function version 2: states without mode and fault (0x06); 0x0A is ignored.
+  host_->send(BoardCommand::kMotorState2, std::array<std::uint8_t, 1>{0x7F});
+  host_->send(BoardCommand::kMotorState, std::array<std::uint8_t, 1>{0x7F});
+  const auto answer = host_->receive(1);
+  ASSERT_EQ(answer.size(), 1U);
+  EXPECT_EQ(answer[0].command, BoardCommand::kMotorState);
+  ASSERT_TRUE(wait_until([] {}, [&] { return sim_->state()["buses"][0]["bad_frames"] == 2; }, 1s));
+  EXPECT_EQ(sim_->state()["buses"][0]["fdcan_resets"], 0);
+}
+
+TEST_F(HighTorqueBoardTest, RunToZeroDrivesTheMotorsBackToZero) {
+  const std::array<BlockSlot, 1> slots{BlockSlot{.motor = 1, .command = mit(0.4, 10, 1)}};
+  host_->send_slots(BoardCommand::kPositionVelocityTorqueKpKd, slots);
+  ASSERT_TRUE(wait_until([] {}, [&] { return std::abs(motor(1)["position_rad"].get<double>() - 0.4) < 0.01; }, 3s));
+  host_->send(BoardCommand::kRunToZero, std::array<std::uint8_t, 1>{0x7F});
+  ASSERT_TRUE(wait_until([] {}, [&] { return std::abs(motor(1)["position_rad"].get<double>()) < 0.01; }, 3s));
+  EXPECT_EQ(motor(1)["mode"], "position");
 }
 
 TEST_F(HighTorqueBoardTest, VersionAndStopAdminCommands) {
@@ -585,7 +655,9 @@ TEST_F(HighTorqueBoardTest, VersionAndStopAdminCommands) {
   EXPECT_EQ(versions[0].command, BoardCommand::kVersion);
   ASSERT_EQ(versions[0].length, 12U);  // [id, major, minor, patch] × 3
   EXPECT_EQ(versions[0].payload[0], 1);
-  EXPECT_EQ(versions[0].payload[2], 3);                               // 0.3.3
+  EXPECT_EQ(versions[0].payload[1], 4);  // the board motors' default firmware 4.4.6
+  EXPECT_EQ(versions[0].payload[2], 4);
+  EXPECT_EQ(versions[0].payload[3], 6);
   host_->send(BoardCommand::kBrake, std::array<std::uint8_t, 1>{2});  // motor 2 only
   ASSERT_TRUE(wait_until([] {}, [&] { return motor(2)["mode"] == "brake"; }, 500ms));
   EXPECT_EQ(motor(1)["mode"], "stop");
@@ -612,6 +684,8 @@ TEST(HighTorqueSimCommandLine, BadOptionsExitWith2) {
                                              {"--bus", path + ":1,1"},
                                              {"--bus", path},
                                              {"--bus", path + ":1", "--firmware", "1.2"},
+                                             {"--board", path + ":1", "--board-firmware", "4"},
+                                             {"--board", path + ":1", "--board-motor-firmware", "0:4.4.6"},
                                              {"--bus", path + ":1", "--bus", path + ":2"},
                                              {"--bus", path + ":1", "--torque-max", "-1"},
                                              {"--bus", path + ":1", "--no-such-option"}}) {
