@@ -14,7 +14,7 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 37> kOps{{
+constexpr std::array<OpSpec, 40> kOps{{
     {"motion_en", R"({"joint": 1..dof or "all", "enable": bool}: enable or disable joint motors (resets the system))",
      driver::kNeedsFreeMotors},
     {"set_state", R"({"state": 0 start | 3 pause | 4 stop | 6 decelerate to stop}: the motion state)",

@@ -148,7 +148,7 @@ TEST(XarmParams, DescribeTellsTheModelsJointsAndLimits) {
 }
 
 // The ops that act on the arm robotd drives need free motors: power, brakes, state and mode,
-// planned motion and motion limits. The queries, clean_war and save_conf do not.
+// planned motion, motion limits and reduced mode. The queries, clean_war and save_conf do not.
 TEST(XarmParams, TheOpsThatActOnTheArmNeedFreeMotors) {
   XarmDriver driver;
   ASSERT_TRUE(driver.configure({{"model", "xarm6"}}));
@@ -156,7 +156,7 @@ TEST(XarmParams, TheOpsThatActOnTheArmNeedFreeMotors) {
             (std::vector<std::string>{"motion_en", "set_state", "set_mode", "clean_err", "set_brake", "move_line",
                                       "move_lineb", "move_joint", "move_gohome", "sleep_instruction", "set_tcp_jerk",
                                       "set_tcp_maxacc", "set_joint_jerk", "set_joint_maxacc", "set_tcp_offset",
-                                      "clean_conf"}));
+                                      "clean_conf", "set_reduced_mode"}));
 }
 
 TEST(XarmConnect, NothingListeningIsNotAvailableAndNamesTheAddress) {

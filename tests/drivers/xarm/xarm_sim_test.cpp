@@ -836,9 +836,10 @@ TEST_F(XarmSimTest, BadRequestsSetInvalidAndAWarning) {
   const Reply circle = client_->request(raw_request(Register::kMoveCircle, Bytes(64, 0)));
   EXPECT_EQ(circle.status_byte, kInvalid | kWarning);
   EXPECT_EQ(circle.data.size(), 2U) << "a motion register still answers with the count";
-  const Reply reduced_mode = client_->request(Request{.reg = 49, .params = {}});
-  EXPECT_EQ(reduced_mode.status_byte, kInvalid | kWarning);
-  EXPECT_EQ(reduced_mode.data, Bytes{0}) << "an unemulated getter answers its u8, zero, so a client reads the status";
+  const Reply joint_tau = client_->request(Request{.reg = 55, .params = {}});
+  EXPECT_EQ(joint_tau.status_byte, kInvalid | kWarning);
+  EXPECT_EQ(joint_tau.data, Bytes(28, 0))
+      << "an unemulated getter answers its 7 floats, zero, so a client reads the status";
   client_->request(plain_request(Register::kCleanWar));
 
   const Reply modbus = client_->request(plain_request(Register::kGetState), 0);
