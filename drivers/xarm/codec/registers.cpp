@@ -55,6 +55,8 @@ constexpr auto kRegisterNames = std::to_array<RegisterName>({
     {Register::kGetFk, "get_fk"},
     {Register::kIsJointLimit, "is_joint_limit"},
     {Register::kIsTcpLimit, "is_tcp_limit"},
+    {Register::kGetReducedMode, "get_reduced_mode"},
+    {Register::kSetReducedMode, "set_reduced_mode"},
     {Register::kServoGetDbmsg, "servo_get_dbmsg"},
     {Register::kToolModbus, "tool_modbus_rtu"},
     {Register::kToolGpioError, "tool_gpio_err"},

@@ -173,6 +173,17 @@ Result<bool> parse_limit_flag(ByteView data) {
 
 Bytes encode_limit_flag(bool outside) { return ByteWriter().u8(outside ? 1 : 0).take(); }
 
+Result<bool> parse_reduced_mode(ByteView data) {
+  if (auto checked = check_data("get_reduced_mode", data, 1); !checked) return checked.error();
+  if (data[0] > 1) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "get_reduced_mode reply says " + std::to_string(data[0]) + ", expected 0 (off) or 1 (on)");
+  }
+  return data[0] == 1;
+}
+
+Bytes encode_reduced_mode(bool on) { return ByteWriter().u8(on ? 1 : 0).take(); }
+
 Result<std::array<ServoStatus, 8>> parse_servo_dbmsg(ByteView data) {
   if (data.size() != kServoPairsBytes && data.size() != kServoPairsBytes + kServoStatusByte) {
     return make_error(ErrorCode::kInvalidArgument, "servo_get_dbmsg reply carries " + std::to_string(data.size()) +

@@ -44,6 +44,12 @@ Request set_state_request(int state) { return u8_request(Register::kSetState, {s
 
 Request set_mode_request(int mode) { return u8_request(Register::kSetMode, {static_cast<std::uint8_t>(mode)}); }
 
+Request set_reduced_mode_request(bool on) {
+  return u8_request(Register::kSetReducedMode, {on ? std::uint8_t{1} : std::uint8_t{0}});
+}
+
+Request set_feedback_type_request(std::uint8_t types) { return u8_request(Register::kSetFeedbackType, {types}); }
+
 Request set_brake_request(int joint, bool release) {
   return u8_request(Register::kSetBrake,
                     {static_cast<std::uint8_t>(joint), release ? std::uint8_t{1} : std::uint8_t{0}});

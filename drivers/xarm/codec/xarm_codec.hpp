@@ -104,6 +104,8 @@ enum class Register : std::uint8_t {
   kGetFk = 44,
   kIsJointLimit = 45,
   kIsTcpLimit = 46,
+  kGetReducedMode = 49,  // fw ≥ 1.2.0
+  kSetReducedMode = 50,
   kServoGetDbmsg = 106,
   kToolModbus = 124,  // RS485_RTU: a Modbus RTU frame to a device on the tool's RS-485 bus
   kToolGpioError = 125,
@@ -262,8 +264,8 @@ struct Request {
   Bytes params;
 };
 /// Registers without parameters: get_version, get_robot_sn, get_state, get_cmdnum, get_err_code,
-/// clean_err, clean_war, clean_conf, save_conf, get_tcp_pose, get_joint_pos, servo_get_dbmsg,
-/// feedback_check.
+/// clean_err, clean_war, clean_conf, save_conf, get_tcp_pose, get_joint_pos, get_reduced_mode,
+/// servo_get_dbmsg, feedback_check.
 Request plain_request(Register reg);
 Request motion_enable_request(int joint, bool enable);  // joint 1–7, 8 = all
 Request set_state_request(int state);                   // 0, 3, 4, 6
@@ -292,6 +294,11 @@ Request move_joint_request(const JointMove& move);
 /// Only speed, acc and mvtime are used.
 Request move_gohome_request(const JointMove& move);
 Request sleep_instruction_request(double seconds);
+/// Reduced mode on or off (the controller's reduced TCP and joint speeds, boundary and ranges).
+Request set_reduced_mode_request(bool on);
+/// The motion feedback (§2.5) this connection wants for the commands it sends next: a bitmask of
+/// the kFeedback* types (0 none). The controller binds the mask to each command as it arrives.
+Request set_feedback_type_request(std::uint8_t types);
 /// servo_j: 7 joint angles + 3 reserved zeros (speed, acc, time).
 Request servo_j_request(const JointValues& joints_rad);
 
@@ -369,6 +376,8 @@ Result<JointValues> parse_joints(ByteView data);  // get_joint_pos: 7 floats
 Bytes encode_joints(const JointValues& joints_rad);
 Result<bool> parse_limit_flag(ByteView data);  // is_joint_limit: 1 = outside the limits
 Bytes encode_limit_flag(bool outside);
+Result<bool> parse_reduced_mode(ByteView data);  // get_reduced_mode: 1 = on
+Bytes encode_reduced_mode(bool on);
 
 struct ServoStatus {
   int state = 0;  // 0 normal, 1 error detected, 3 communication failure
@@ -408,6 +417,14 @@ enum class GripperRegister : std::uint16_t {
   kPosition = 0x0702,
   kVersionMajor = 0x0801,  // then minor 0x0802, patch 0x0803
 };
+/// The status register's bits 0–1 (the SDK tests `status & 0x03`; its check_catch_gripper_status
+/// waits for 2).
+enum GripperStatus : int {
+  kGripperStopped = 0,  // at its target (or never moved)
+  kGripperMoving = 1,
+  kGripperGripping = 2,  // stopped short of its target on an object
+};
+inline constexpr std::uint16_t kGripperStatusBits = 0x03;
 /// Gripper positions in pulses: 0 closed, 850 open (the SDK's and Studio's range: -10 … 850).
 inline constexpr int kGripperMinPulses = -10;
 inline constexpr int kGripperMaxPulses = 850;
@@ -454,6 +471,16 @@ Bytes encode_tool_register_value(std::int32_t value);
 Result<std::int32_t> parse_tool_register_value(ByteView data);
 
 // ---- Unsolicited motion feedback (§2.5) ----------------------------------------------------
+
+/// set_feedback_type's bits (the SDK's FeedbackType): a motion started / finished or was discarded,
+/// a non-motion task triggered, a non-motion task (trajectory save, load, play) started / finished.
+inline constexpr std::uint8_t kFeedbackMotionStart = 0x01;
+inline constexpr std::uint8_t kFeedbackMotionFinish = 0x02;
+inline constexpr std::uint8_t kFeedbackTrigger = 0x04;
+inline constexpr std::uint8_t kFeedbackOtherStart = 0x20;
+inline constexpr std::uint8_t kFeedbackOtherFinish = 0x40;
+inline constexpr std::uint8_t kFeedbackTypes =
+    kFeedbackMotionStart | kFeedbackMotionFinish | kFeedbackTrigger | kFeedbackOtherStart | kFeedbackOtherFinish;
 
 struct MotionFeedback {
   std::uint16_t transaction_id = 0;  // of the command it refers to

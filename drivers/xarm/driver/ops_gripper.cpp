@@ -24,6 +24,19 @@ std::int32_t position_of(const std::vector<std::uint16_t>& words) {
   return static_cast<std::int32_t>((static_cast<std::uint32_t>(words[0]) << 16) | words[1]);
 }
 
+std::string_view gripper_status_text(int status) {
+  switch (status) {
+    case kGripperStopped:
+      return "stopped";
+    case kGripperMoving:
+      return "moving";
+    case kGripperGripping:
+      return "gripping an object";
+    default:
+      return "status 3 (not defined)";
+  }
+}
+
 std::string gripper_error_text(int code) {
   return "gripper error " + std::to_string(code) + ": " + servo_error_text(code);
 }
@@ -138,8 +151,11 @@ Result<nlohmann::json> XarmOps::gripper_move(const std::string& op, const nlohma
     unchanged = last && *last == now ? unchanged + 1 : 0;
     last = now;
     if (std::abs(now - pulses) <= kTargetTolerancePulses || unchanged >= kStalledPolls) {
+      auto status = gripper_status(op);
+      if (!status) return status.error();
       result.value()["position"] = now;
       result.value()["completed"] = true;
+      result.value()["object_gripped"] = status.value() == kGripperGripping;
       return result;
     }
     if (std::chrono::steady_clock::now() > deadline) {
@@ -166,6 +182,22 @@ Result<nlohmann::json> XarmOps::gripper_get_error(const nlohmann::json& args) {
   if (!code) return code.error();
   const int error = code.value()[0];
   return nlohmann::json{{"error", error}, {"error_text", error == 0 ? "" : gripper_error_text(error)}};
+}
+
+Result<int> XarmOps::gripper_status(std::string_view op) {
+  auto status = gripper_read(op, GripperRegister::kStatus, 1);
+  if (!status) return status.error();
+  return static_cast<int>(status.value()[0] & kGripperStatusBits);
+}
+
+Result<nlohmann::json> XarmOps::gripper_get_status(const nlohmann::json& args) {
+  driver::OpArguments arguments("gripper_get_status", args, op_usage("gripper_get_status"));
+  if (auto error = arguments.finish()) return *error;
+  auto status = gripper_status("gripper_get_status");
+  if (!status) return status.error();
+  return nlohmann::json{{"status", status.value()},
+                        {"status_text", gripper_status_text(status.value())},
+                        {"object_gripped", status.value() == kGripperGripping}};
 }
 
 Result<nlohmann::json> XarmOps::gripper_clean_error(const nlohmann::json& args) {

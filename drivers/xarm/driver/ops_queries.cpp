@@ -91,6 +91,12 @@ Result<nlohmann::json> XarmOps::is_joint_limit(const nlohmann::json& args) {
                 [](nlohmann::json& out, bool outside) { out["outside_limits"] = outside; });
 }
 
+Result<nlohmann::json> XarmOps::get_reduced_mode(const nlohmann::json& args) {
+  if (auto error = no_arguments("get_reduced_mode", args)) return *error;
+  return answer("get_reduced_mode", plain_request(Register::kGetReducedMode), parse_reduced_mode,
+                [](nlohmann::json& out, bool on) { out["reduced_mode"] = on; });
+}
+
 Result<nlohmann::json> XarmOps::servo_get_dbmsg(const nlohmann::json& args) {
   if (auto error = no_arguments("servo_get_dbmsg", args)) return *error;
   const std::size_t dof = driver_.params_.model.dof;

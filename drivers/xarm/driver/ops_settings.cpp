@@ -46,6 +46,14 @@ Result<nlohmann::json> XarmOps::set_mode(const nlohmann::json& args) {
   return acknowledge("set_mode", set_mode_request(static_cast<int>(*mode)));
 }
 
+Result<nlohmann::json> XarmOps::set_reduced_mode(const nlohmann::json& args) {
+  driver::OpArguments arguments("set_reduced_mode", args, op_usage("set_reduced_mode"));
+  arguments.reader().require("on", "true or false");
+  const bool on = arguments.reader().boolean_or("on", false);
+  if (auto error = arguments.finish()) return *error;
+  return acknowledge("set_reduced_mode", set_reduced_mode_request(on));
+}
+
 Result<nlohmann::json> XarmOps::set_brake(const nlohmann::json& args) {
   driver::OpArguments arguments("set_brake", args, op_usage("set_brake"));
   const auto joint = joint_argument(arguments, /*allow_all=*/true);

@@ -14,7 +14,7 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 37> kOps{{
+constexpr std::array<OpSpec, 40> kOps{{
     {"motion_en", R"({"joint": 1..dof or "all", "enable": bool}: enable or disable joint motors (resets the system))",
      driver::kNeedsFreeMotors},
     {"set_state", R"({"state": 0 start | 3 pause | 4 stop | 6 decelerate to stop}: the motion state)",
@@ -65,6 +65,11 @@ constexpr std::array<OpSpec, 37> kOps{{
     {"is_joint_limit", R"({"joints_rad": [dof]}: whether those joints are outside the limits)"},
     {"servo_get_dbmsg", R"({}: each joint's (and the gripper's) servo state and error code, with texts)"},
     {"get_version", R"({}: axes, device type, model, serial numbers and firmware)"},
+    {"get_reduced_mode", R"({}: whether the controller's reduced mode is on (firmware ≥ 1.2.0))"},
+    {"set_reduced_mode",
+     R"({"on": bool}: switch the controller's reduced mode (its reduced TCP and joint speeds, boundary and )"
+     R"(joint ranges, set in UFACTORY Studio) on or off)",
+     driver::kNeedsFreeMotors},
     {"feedback_check", R"({}: a no-op round trip to the control box)"},
     {"state", R"({}: what robotd last received: joints, state, mode, codes, servo phase, link counters)"},
     {"gripper_enable", R"({"enable": bool}: switch the xArm gripper's motor on or off (tool RS-485, 2 Mbit/s))"},
@@ -76,6 +81,8 @@ constexpr std::array<OpSpec, 37> kOps{{
     {"gripper_close", R"({"speed_rpm", "wait", "timeout_s"}: gripper_set_position to 0 (closed))"},
     {"gripper_get_position", R"({}: the gripper's position in pulses)"},
     {"gripper_get_error", R"({}: the gripper's error code and text (0: none))"},
+    {"gripper_get_status",
+     R"({}: the gripper's status: 0 stopped, 1 moving, 2 gripping an object (gripper firmware ≥ 3.4.3))"},
     {"gripper_clean_error", R"({}: clear the gripper's error (enable it again afterwards))"},
 }};
 
@@ -121,12 +128,15 @@ Result<nlohmann::json> XarmOps::call(const std::string& op, const nlohmann::json
     if (op == "is_joint_limit") return is_joint_limit(args);
     if (op == "servo_get_dbmsg") return servo_get_dbmsg(args);
     if (op == "get_version") return get_version(args);
+    if (op == "get_reduced_mode") return get_reduced_mode(args);
+    if (op == "set_reduced_mode") return set_reduced_mode(args);
     if (op == "state") return state(args);
     if (op == "gripper_enable") return gripper_enable(args);
     if (op == "gripper_set_speed") return gripper_set_speed(args);
     if (op == "gripper_set_position" || op == "gripper_open" || op == "gripper_close") return gripper_move(op, args);
     if (op == "gripper_get_position") return gripper_get_position(args);
     if (op == "gripper_get_error") return gripper_get_error(args);
+    if (op == "gripper_get_status") return gripper_get_status(args);
     if (op == "gripper_clean_error") return gripper_clean_error(args);
   } catch (const std::exception& e) {
     return make_error(ErrorCode::kInvalidArgument, op + ": " + e.what());

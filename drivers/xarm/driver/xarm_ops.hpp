@@ -42,6 +42,7 @@ class XarmOps {
   Result<nlohmann::json> set_brake(const nlohmann::json& args);
   Result<nlohmann::json> set_limit(const std::string& op, const nlohmann::json& args);
   Result<nlohmann::json> set_tcp_offset(const nlohmann::json& args);
+  Result<nlohmann::json> set_reduced_mode(const nlohmann::json& args);
   /// Ops without arguments that only say whether the box took them.
   Result<nlohmann::json> plain(const std::string& op, Register reg, const nlohmann::json& args);
 
@@ -55,6 +56,7 @@ class XarmOps {
   Result<nlohmann::json> is_joint_limit(const nlohmann::json& args);
   Result<nlohmann::json> servo_get_dbmsg(const nlohmann::json& args);
   Result<nlohmann::json> get_version(const nlohmann::json& args);
+  Result<nlohmann::json> get_reduced_mode(const nlohmann::json& args);
   Result<nlohmann::json> state(const nlohmann::json& args);
   /// Sends `request`, decodes the reply's data with `parse` and lets `fill` add it to the
   /// execution state.
@@ -68,6 +70,9 @@ class XarmOps {
   Result<nlohmann::json> gripper_move(const std::string& op, const nlohmann::json& args);
   Result<nlohmann::json> gripper_get_position(const nlohmann::json& args);
   Result<nlohmann::json> gripper_get_error(const nlohmann::json& args);
+  Result<nlohmann::json> gripper_get_status(const nlohmann::json& args);
+  /// The status register's bits 0–1 (GripperStatus).
+  Result<int> gripper_status(std::string_view op);
   Result<nlohmann::json> gripper_clean_error(const nlohmann::json& args);
   /// Reads `count` gripper registers from `reg`.
   Result<std::vector<std::uint16_t>> gripper_read(std::string_view op, GripperRegister reg, std::uint16_t count);

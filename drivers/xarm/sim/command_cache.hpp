@@ -26,6 +26,9 @@ struct CommandOrigin {
   std::uint16_t protocol = kProtocolPrivate;
   std::uint8_t reg = 0;
   std::uint16_t task_id = 0;  // numbers the cached commands, from 1
+  /// The connection's set_feedback_type when the request arrived: the SDK sets a mask, sends
+  /// the move and restores the mask before the move ends, and still waits for its frame.
+  std::uint8_t feedback_types = 0;
 };
 
 struct CachedCommand {

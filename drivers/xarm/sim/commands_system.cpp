@@ -10,7 +10,6 @@ namespace {
 
 constexpr int kAllJoints = 8;
 constexpr int kMaxSensitivity = 5;
-constexpr int kFeedbackBits = 0x07;  // 1 started, 2 finished, 4 non-motion task triggered
 
 // Serial numbers in the controller's format: two letters for the product, four digits for the
 // series (the SDK reads them: ≥ 1300 a 1300-series arm or box, 1305 … 8499 the "-1305" joint
@@ -192,11 +191,26 @@ Controller::Outcome Controller::feedback_check(const Request& /*request*/) { ret
 Controller::Outcome Controller::set_feedback_type(const Request& request) {
   const auto parsed = parse_u8_param(request.frame.reg, request.frame.body);
   if (!parsed) return parameter_error(request, parsed.error().message);
-  if ((parsed.value() & ~kFeedbackBits) != 0) {
+  if ((parsed.value() & ~kFeedbackTypes) != 0) {
     return parameter_error(request, "feedback type " + std::to_string(parsed.value()) +
-                                        " has bits other than 1 (started), 2 (finished), 4 (triggered)");
+                                        " has bits other than 1 (started), 2 (finished), 4 (triggered), 32 and 64"
+                                        " (other task started, finished)");
   }
   feedback_masks_[request.client] = static_cast<std::uint8_t>(parsed.value());
+  return Outcome{};
+}
+
+Controller::Outcome Controller::get_reduced_mode(const Request& /*request*/) {
+  return answer(encode_reduced_mode(reduced_mode_));
+}
+
+Controller::Outcome Controller::set_reduced_mode(const Request& request) {
+  const auto parsed = parse_u8_param(request.frame.reg, request.frame.body);
+  if (!parsed) return parameter_error(request, parsed.error().message);
+  if (parsed.value() > 1) {
+    return parameter_error(request, "reduced mode " + std::to_string(parsed.value()) + " is not 0 (off) or 1 (on)");
+  }
+  reduced_mode_ = parsed.value() == 1;
   return Outcome{};
 }
 

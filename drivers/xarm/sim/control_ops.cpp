@@ -20,7 +20,8 @@ using sim_control::RequestError;
 constexpr std::int64_t kMaxReplyCount = 1'000'000;
 constexpr std::int64_t kGripperSlot = 8;
 constexpr const char* kOps =
-    "state, error, warning, servo_error, gripper_error, estop, drop_replies, garbage, disconnect, silence, "
+    "state, error, warning, servo_error, gripper_error, gripper_object, estop, drop_replies, garbage, disconnect, "
+    "silence, "
     "set_joints";
 /// A reply's transaction id no request used: half the id space away from the client's last one.
 constexpr std::uint16_t kUnusedTransactionOffset = 0x8000;
@@ -79,6 +80,10 @@ json Simulator::control(const json& request) {
     } else if (op == "gripper_error") {
       expect_fields(request, op, {"code"});
       controller_.set_gripper_error(static_cast<int>(integer_field(request, op, "code", 0, 255)));
+    } else if (op == "gripper_object") {
+      expect_fields(request, op, {"width_pulses"});
+      controller_.set_gripper_object(
+          static_cast<int>(integer_field(request, op, "width_pulses", 0, kGripperMaxPulses)));
     } else if (op == "estop") {
       expect_fields(request, op, {"pressed"});
       controller_.set_estop(boolean_field(request, op, "pressed"));

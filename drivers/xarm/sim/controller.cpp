@@ -24,11 +24,11 @@ bool disables_motors(int error) {
 
 /// The data the getters of §4.2 this simulator does not emulate answer, in bytes (0 for the
 /// others): check_verify 3, get_report_tau_or_i 5, get_tcp_rotation_radius 6,
-/// get_allow_approx_motion 7, get_reduced_mode 49, get_reduced_state 53 (the short form),
-/// get_joint_tau 55, get_dh_params 67, get_movement 69.
+/// get_allow_approx_motion 7, get_reduced_state 53 (the long form the SDK reads from firmware
+/// 1.2.11 on), get_joint_tau 55, get_dh_params 67, get_movement 69.
 std::size_t getter_reply_bytes(std::uint8_t reg) {
-  static const std::map<std::uint8_t, std::size_t> sizes = {{3, 1},   {5, 1},   {6, 4},    {7, 4}, {49, 1},
-                                                            {53, 21}, {55, 28}, {67, 112}, {69, 1}};
+  static const std::map<std::uint8_t, std::size_t> sizes = {{3, 1},   {5, 1},   {6, 4},    {7, 4},
+                                                            {53, 79}, {55, 28}, {67, 112}, {69, 1}};
   const auto found = sizes.find(reg);
   return found == sizes.end() ? 0 : found->second;
 }
@@ -87,6 +87,8 @@ const std::map<std::uint8_t, Controller::Handler>& Controller::handlers() {
       {number(Register::kGetIk), &C::get_ik},
       {number(Register::kGetFk), &C::get_fk},
       {number(Register::kIsJointLimit), &C::is_joint_limit},
+      {number(Register::kGetReducedMode), &C::get_reduced_mode},
+      {number(Register::kSetReducedMode), &C::set_reduced_mode},
       {number(Register::kServoGetDbmsg), &C::servo_get_dbmsg},
       {number(Register::kToolModbus), &C::tool_modbus},
       {number(Register::kToolGpioError), &C::tool_gpio_error},
@@ -178,8 +180,7 @@ void Controller::reset_system() {
 void Controller::emit_feedback(const std::vector<CacheEvent>& events) {
   const auto controller_time_us = static_cast<std::uint64_t>((advanced_ns_ - started_ns_) / 1000);
   for (const CacheEvent& event : events) {
-    const auto mask = feedback_masks_.find(event.origin.client);
-    if (mask == feedback_masks_.end() || (mask->second & event.type) == 0) continue;
+    if ((event.origin.feedback_types & event.type) == 0) continue;
     const MotionFeedback feedback{.transaction_id = event.origin.transaction_id,
                                   .type = event.type,
                                   .command_reg = event.origin.reg,
@@ -207,7 +208,8 @@ Controller::Outcome Controller::queue(const Request& request, CachedCommand comm
                                  .transaction_id = request.frame.transaction_id,
                                  .protocol = request.frame.protocol,
                                  .reg = request.frame.reg,
-                                 .task_id = next_task_id_};
+                                 .task_id = next_task_id_,
+                                 .feedback_types = feedback_masks_[request.client]};
   next_task_id_ = static_cast<std::uint16_t>(next_task_id_ == 0xFFFF ? 1 : next_task_id_ + 1);
   cache_.push(std::move(command));
   if (state_ == kStateSleeping) {
@@ -362,6 +364,7 @@ nlohmann::json Controller::state() const {
           {"warning", warning_},
           {"gripper", gripper_.state()},
           {"estop_held", estop_held_},
+          {"reduced_mode", reduced_mode_},
           {"enabled", first(enabled_)},
           {"brakes_released", first(brake_released_)},
           {"joints_rad", first(joints_)},

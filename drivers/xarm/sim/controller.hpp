@@ -68,6 +68,7 @@ class Controller {
   void set_servo_error(std::size_t slot, int code);
   /// The gripper reports error `code` (0 clears it) and stops.
   void set_gripper_error(int code) { gripper_.set_error(code); }
+  void set_gripper_object(int width_pulses) { gripper_.set_object(width_pulses); }
   /// The e-stop button: pressed latches error 1, which clean_err cannot clear until released.
   void set_estop(bool pressed);
   /// Puts the joints there (within the limits); kRefused while the cache holds commands.
@@ -138,6 +139,8 @@ class Controller {
   Outcome servo_get_dbmsg(const Request& request);
   Outcome feedback_check(const Request& request);
   Outcome set_feedback_type(const Request& request);
+  Outcome get_reduced_mode(const Request& request);
+  Outcome set_reduced_mode(const Request& request);
 
   // commands_motion.cpp
   Outcome move_line(const Request& request);
@@ -176,6 +179,7 @@ class Controller {
   int warning_ = 0;
   bool estop_held_ = false;
   bool slow_stopping_ = false;  // set_state(6): the move brakes, then state 4
+  bool reduced_mode_ = false;   // a flag only: the reduced speeds, boundary and ranges are not simulated
 
   CommandCache cache_;
   std::uint16_t next_task_id_ = 1;

@@ -8,8 +8,6 @@ namespace {
 
 constexpr std::uint8_t kIllegalAddress = 2;
 constexpr std::uint8_t kIllegalValue = 3;
-constexpr std::uint16_t kStatusStopped = 0;
-constexpr std::uint16_t kStatusMoving = 1;
 
 constexpr std::uint16_t address_of(GripperRegister reg) { return static_cast<std::uint16_t>(reg); }
 constexpr std::uint16_t high_word(std::int32_t value) {
@@ -22,15 +20,22 @@ constexpr std::uint16_t low_word(std::int32_t value) { return static_cast<std::u
 void XarmGripper::advance(double dt_s) {
   if (!enabled_ || error_ != 0) return;
   const double step = kPulsesPerSecondPerRpm * speed_rpm_ * dt_s;
-  const double to_go = target_ - position_;
-  position_ = std::abs(to_go) <= step ? target_ : position_ + std::copysign(step, to_go);
+  const double stop = stop_position();
+  const double to_go = stop - position_;
+  position_ = std::abs(to_go) <= step ? stop : position_ + std::copysign(step, to_go);
+}
+
+double XarmGripper::stop_position() const {
+  const bool closes_onto_object = object_pulses_ > 0 && target_ < object_pulses_ && position_ >= object_pulses_;
+  return closes_onto_object ? object_pulses_ : target_;
 }
 
 std::optional<std::uint16_t> XarmGripper::read(std::uint16_t address) const {
   const auto position = static_cast<std::int32_t>(std::lround(position_));
   switch (static_cast<GripperRegister>(address)) {
     case GripperRegister::kStatus:
-      return enabled_ && position != target_ ? kStatusMoving : kStatusStopped;
+      if (enabled_ && position_ != stop_position()) return kGripperMoving;
+      return stop_position() != target_ ? kGripperGripping : kGripperStopped;
     case GripperRegister::kErrorCode:
       return static_cast<std::uint16_t>(error_);
     case GripperRegister::kEnable:
@@ -111,8 +116,14 @@ void XarmGripper::set_error(int code) {
 }
 
 nlohmann::json XarmGripper::state() const {
-  return {{"enabled", enabled_},      {"mode", mode_},  {"speed_rpm", speed_rpm_}, {"position_pulses", position_},
-          {"target_pulses", target_}, {"error", error_}};
+  return {{"enabled", enabled_},
+          {"mode", mode_},
+          {"speed_rpm", speed_rpm_},
+          {"position_pulses", position_},
+          {"target_pulses", target_},
+          {"error", error_},
+          {"object_pulses", object_pulses_},
+          {"status", read(address_of(GripperRegister::kStatus)).value_or(0)}};
 }
 
 }  // namespace robotd::xarm::sim

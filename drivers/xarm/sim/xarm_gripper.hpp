@@ -1,6 +1,7 @@
 // The xArm gripper on the tool's RS-485 bus (Modbus id 8): its registers as the Modbus requests of
 // register 124 and the direct accesses of registers 127–130 see them, and its finger moving toward
-// the target at the set speed. No object is ever gripped: a move ends at its target.
+// the target at the set speed. An object placed between the fingers (from the control channel)
+// stops a closing move at its width, and the status register then says "gripping" (2).
 #pragma once
 
 #include <array>
@@ -33,6 +34,10 @@ class XarmGripper {
   /// A Modbus request (functions 3 and 16) and the reply data of register 124.
   Bytes modbus(const ToolModbusRequest& request);
 
+  /// An object `width_pulses` wide between the fingers (0: none): a move closing past it stops
+  /// there. Set from the control channel.
+  void set_object(int width_pulses) { object_pulses_ = width_pulses; }
+
   /// The error code the gripper reports (0 none): set from the control channel.
   void set_error(int code);
   int error() const { return error_; }
@@ -46,6 +51,10 @@ class XarmGripper {
   std::int32_t target_ = 0;
   std::uint16_t target_high_ = 0;  // the first word of a target written one register at a time
   int error_ = 0;
+  int object_pulses_ = 0;
+
+  /// Where the finger stops: the target, or the object's width when it closes onto the object.
+  double stop_position() const;
 };
 
 }  // namespace robotd::xarm::sim

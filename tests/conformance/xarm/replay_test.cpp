@@ -100,14 +100,12 @@ class CommandPort {
   robotd::xarm::FrameSplitter frames_;
 };
 
-/// Waits until nothing moves: no queued or running motion, the gripper at its target.
+/// Waits until nothing moves: no queued or running motion, the gripper stopped (or gripping).
 void wait_at_rest(const XarmSimProcess& sim) {
   const auto deadline = std::chrono::steady_clock::now() + kRestTimeout;
   while (std::chrono::steady_clock::now() < deadline) {
     const nlohmann::json state = sim.control({{"op", "state"}});
-    const auto& gripper = state.at("gripper");
-    const bool gripper_still = !gripper.at("enabled").get<bool>() ||
-                               gripper.at("position_pulses").get<double>() == gripper.at("target_pulses").get<double>();
+    const bool gripper_still = state.at("gripper").at("status") != robotd::xarm::kGripperMoving;
     if (state.at("state") != kMoving && state.at("cmdnum") == 0 && gripper_still) return;
     std::this_thread::sleep_for(5ms);
   }

@@ -20,7 +20,8 @@ Frame single_frame(const Bytes& bytes) {
   return *frame.value();
 }
 
-std::vector<Exchange> exchanges_of(const nlohmann::json& frames) {
+/// The connection's exchanges; its motion-feedback frames go to `feedback`.
+std::vector<Exchange> exchanges_of(const nlohmann::json& frames, std::vector<Bytes>& feedback) {
   std::vector<Exchange> exchanges;
   for (const auto& frame : frames) {
     const Bytes bytes = hex_bytes(frame.at("hex").get<std::string>());
@@ -34,6 +35,10 @@ std::vector<Exchange> exchanges_of(const nlohmann::json& frames) {
       continue;
     }
     const Frame reply = single_frame(bytes);
+    if (robotd::xarm::is_motion_feedback(reply)) {
+      feedback.push_back(bytes);
+      continue;
+    }
     if (exchanges.empty() || !exchanges.back().reply.empty() ||
         exchanges.back().request_frame.transaction_id != reply.transaction_id) {
       throw std::runtime_error("transcript.json: reply " + hex_text(bytes) + " follows no request of its id");
@@ -52,7 +57,7 @@ Transcript load() {
   for (const auto& connection : data.at("connections")) {
     const std::string kind = connection.at("kind").get<std::string>();
     if (kind == "command") {
-      auto exchanges = exchanges_of(connection.at("frames"));
+      auto exchanges = exchanges_of(connection.at("frames"), loaded.feedback);
       loaded.exchanges.insert(loaded.exchanges.end(), exchanges.begin(), exchanges.end());
       continue;
     }

@@ -1,5 +1,6 @@
 // transcript.json as the tests use it: the command connection's exchanges (a request and the
-// reply with its transaction id), and the first packets of each report connection.
+// reply with its transaction id), the motion-feedback frames the controller sent unasked, and the
+// first packets of each report connection.
 #pragma once
 
 #include <optional>
@@ -29,6 +30,7 @@ struct ReportConnection {
 
 struct Transcript {
   std::vector<Exchange> exchanges;
+  std::vector<robotd::xarm::Bytes> feedback;  // whole motion-feedback frames (register 0xFF)
   std::vector<ReportConnection> reports;
   std::string model;
   std::string firmware;

@@ -148,7 +148,7 @@ TEST(XarmParams, DescribeTellsTheModelsJointsAndLimits) {
 }
 
 // The ops that act on the arm robotd drives need free motors: power, brakes, state and mode,
-// planned motion and motion limits. The queries, clean_war and save_conf do not.
+// planned motion, motion limits and reduced mode. The queries, clean_war and save_conf do not.
 TEST(XarmParams, TheOpsThatActOnTheArmNeedFreeMotors) {
   XarmDriver driver;
   ASSERT_TRUE(driver.configure({{"model", "xarm6"}}));
@@ -156,7 +156,7 @@ TEST(XarmParams, TheOpsThatActOnTheArmNeedFreeMotors) {
             (std::vector<std::string>{"motion_en", "set_state", "set_mode", "clean_err", "set_brake", "move_line",
                                       "move_lineb", "move_joint", "move_gohome", "sleep_instruction", "set_tcp_jerk",
                                       "set_tcp_maxacc", "set_joint_jerk", "set_joint_maxacc", "set_tcp_offset",
-                                      "clean_conf"}));
+                                      "clean_conf", "set_reduced_mode"}));
 }
 
 TEST(XarmConnect, NothingListeningIsNotAvailableAndNamesTheAddress) {
@@ -543,6 +543,38 @@ TEST_F(XarmDriverTest, TheGripperOpensClosesAndReportsItsErrorsOverTheToolBus) {
   EXPECT_EQ(call("gripper_get_error")["error"], 0);
   call("gripper_enable", {{"enable", true}});
   EXPECT_EQ(call("gripper_open", {{"wait", true}})["position"], 850);
+}
+
+TEST_F(XarmDriverTest, TheGripperSaysWhenItHoldsAnObject) {
+  ASSERT_TRUE(driver_.connect());
+  call("gripper_enable", {{"enable", true}});
+  const nlohmann::json opened = call("gripper_open", {{"speed_rpm", 5000}, {"wait", true}});
+  EXPECT_FALSE(opened["object_gripped"].get<bool>()) << opened.dump();
+  EXPECT_EQ(call("gripper_get_status")["status"], 0);
+
+  ASSERT_TRUE(sim_.control({{"op", "gripper_object"}, {"width_pulses", 300}})["ok"].get<bool>());
+  const nlohmann::json closed = call("gripper_close", {{"wait", true}});
+  EXPECT_EQ(closed["position"], 300) << closed.dump();
+  EXPECT_TRUE(closed["object_gripped"].get<bool>()) << closed.dump();
+  const nlohmann::json status = call("gripper_get_status");
+  EXPECT_EQ(status["status"], 2) << status.dump();
+  EXPECT_EQ(status["status_text"], "gripping an object");
+  EXPECT_TRUE(status["object_gripped"].get<bool>());
+
+  EXPECT_FALSE(call("gripper_open", {{"wait", true}})["object_gripped"].get<bool>()) << "opened, it lets go";
+}
+
+TEST_F(XarmDriverTest, ReducedModeIsSwitchedAndReadAsTheSdkDoes) {
+  ASSERT_TRUE(driver_.connect());
+  EXPECT_FALSE(call("get_reduced_mode")["reduced_mode"].get<bool>());
+  call("set_reduced_mode", {{"on", true}});
+  EXPECT_TRUE(sim_state()["reduced_mode"].get<bool>());
+  EXPECT_TRUE(call("get_reduced_mode")["reduced_mode"].get<bool>());
+  const auto missing = driver_.call("set_reduced_mode", nlohmann::json::object());
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().message.find("on"), std::string::npos) << missing.error().message;
+  call("set_reduced_mode", {{"on", false}});
+  EXPECT_FALSE(call("get_reduced_mode")["reduced_mode"].get<bool>());
 }
 
 TEST_F(XarmDriverTest, ManualEnableRefusesServoModeUntilTheMotorsAreOn) {

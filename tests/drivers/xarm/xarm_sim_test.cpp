@@ -391,6 +391,8 @@ TEST_F(XarmSimTest, EveryRegisterAnswersWithItsDataShape) {
       {set_joint_jerk_request(100.0), 2},
       {raw_request(Register::kGetJointPos, {3}), 84},
       {raw_request(Register::kSetFeedbackType, {0}), 0},
+      {plain_request(Register::kGetReducedMode), 1},
+      {set_reduced_mode_request(false), 0},
   };
   for (const auto& [request, size] : shapes) {
     const Reply reply = client_->request(request);
@@ -651,6 +653,64 @@ TEST_F(XarmSimTest, MotionFeedbackTellsStartAndFinish) {
   EXPECT_GE(state()["feedback_frames_sent"], 4);
 }
 
+TEST_F(XarmSimTest, AMoveKeepsTheFeedbackTypeItWasSentWith) {
+  bring_up();
+  // The SDK's wait: ask for "finished", send the move, restore the mask at once, wait for the frame.
+  client_->request(set_feedback_type_request(kFeedbackMotionFinish));
+  const Reply queued = client_->request(move_joint_request(joint_move({0.1, 0, 0, 0, 0, 0, 0}, 2.0, 20.0)));
+  client_->request(set_feedback_type_request(0));
+  const auto finished = client_->next_feedback();
+  ASSERT_TRUE(finished) << "the move's finish frame, though the mask is 0 again";
+  EXPECT_EQ(finished->type, 2);
+  EXPECT_EQ(finished->transaction_id, queued.transaction_id);
+  client_->request(move_joint_request(joint_move({0, 0, 0, 0, 0, 0, 0}, 2.0, 20.0)));
+  EXPECT_FALSE(client_->next_feedback(500ms)) << "a move sent with mask 0 has no frame";
+}
+
+TEST_F(XarmSimTest, ReducedModeIsAFlagToSetAndRead) {
+  EXPECT_EQ(client_->request(plain_request(Register::kGetReducedMode)).data, Bytes{0});
+  EXPECT_EQ(client_->request(set_reduced_mode_request(true)).status_byte & 0x08, 0);
+  EXPECT_EQ(client_->request(plain_request(Register::kGetReducedMode)).data, Bytes{1});
+  EXPECT_TRUE(state()["reduced_mode"].get<bool>());
+  const Reply refused = client_->request(raw_request(Register::kSetReducedMode, {2}));
+  EXPECT_TRUE(refused.status.invalid);
+  EXPECT_EQ(state()["warning"], 12);
+  EXPECT_EQ(client_->request(plain_request(Register::kGetReducedMode)).data, Bytes{1});
+}
+
+// --- the xArm gripper ---------------------------------------------------------------------------
+
+TEST_F(XarmSimTest, TheGripperStopsOnAnObjectAndSaysItGripsIt) {
+  const auto write = [&](GripperRegister reg, std::vector<std::uint16_t> values) {
+    const Reply reply =
+        client_->request(tool_modbus_write_request(kGripperId, static_cast<std::uint16_t>(reg), values));
+    ASSERT_TRUE(parse_tool_modbus_write_reply(reply.data, kGripperId, static_cast<std::uint16_t>(reg),
+                                              static_cast<std::uint16_t>(values.size())));
+  };
+  const auto read = [&](GripperRegister reg, std::uint16_t count) {
+    const Reply reply = client_->request(tool_modbus_read_request(kGripperId, static_cast<std::uint16_t>(reg), count));
+    return parse_tool_modbus_read_reply(reply.data, kGripperId, count).value();
+  };
+  const auto settled_status = [&] {
+    for (int i = 0; i < 400 && read(GripperRegister::kStatus, 1)[0] == kGripperMoving; ++i) {
+      std::this_thread::sleep_for(10ms);
+    }
+    return read(GripperRegister::kStatus, 1)[0];
+  };
+  write(GripperRegister::kEnable, {1});
+  write(GripperRegister::kSpeed, {5000});
+  write(GripperRegister::kTargetPosition, {0, 600});
+  EXPECT_EQ(settled_status(), kGripperStopped);
+  control({{"op", "gripper_object"}, {"width_pulses", 300}});
+  write(GripperRegister::kTargetPosition, {0, 0});
+  EXPECT_EQ(settled_status(), kGripperGripping);
+  EXPECT_EQ(read(GripperRegister::kPosition, 2), (std::vector<std::uint16_t>{0, 300}));
+  EXPECT_EQ(read(GripperRegister::kTargetPosition, 2), (std::vector<std::uint16_t>{0, 0}));
+  write(GripperRegister::kTargetPosition, {0, 500});
+  EXPECT_EQ(settled_status(), kGripperStopped) << "opening lets go of the object";
+  EXPECT_EQ(read(GripperRegister::kPosition, 2), (std::vector<std::uint16_t>{0, 500}));
+}
+
 // --- servo mode ---------------------------------------------------------------------------------
 
 TEST_F(XarmSimTest, ServoJFollowsTheNewestTarget) {
@@ -776,9 +836,10 @@ TEST_F(XarmSimTest, BadRequestsSetInvalidAndAWarning) {
   const Reply circle = client_->request(raw_request(Register::kMoveCircle, Bytes(64, 0)));
   EXPECT_EQ(circle.status_byte, kInvalid | kWarning);
   EXPECT_EQ(circle.data.size(), 2U) << "a motion register still answers with the count";
-  const Reply reduced_mode = client_->request(Request{.reg = 49, .params = {}});
-  EXPECT_EQ(reduced_mode.status_byte, kInvalid | kWarning);
-  EXPECT_EQ(reduced_mode.data, Bytes{0}) << "an unemulated getter answers its u8, zero, so a client reads the status";
+  const Reply joint_tau = client_->request(Request{.reg = 55, .params = {}});
+  EXPECT_EQ(joint_tau.status_byte, kInvalid | kWarning);
+  EXPECT_EQ(joint_tau.data, Bytes(28, 0))
+      << "an unemulated getter answers its 7 floats, zero, so a client reads the status";
   client_->request(plain_request(Register::kCleanWar));
 
   const Reply modbus = client_->request(plain_request(Register::kGetState), 0);

@@ -1,7 +1,8 @@
 """The scripted session: the SDK's public XArmAPI calls a user makes, in order, each named as a
 step (the transcript tags every frame with the step that sent it). Error cases included: a target
 beyond a joint limit (the SDK refuses it itself), servo_j outside servo mode, a register the
-simulator does not emulate, a gripper fault, the e-stop state."""
+simulator does not emulate, a gripper fault, the e-stop state. The gripper also closes onto an
+object the simulator is told to place between its fingers."""
 import math
 import time
 
@@ -70,11 +71,23 @@ def run_session(XArmAPI, proxy, sim_control):
     step('gripper', 'get_gripper_status()', arm.get_gripper_status)
     step('gripper', 'set_gripper_position(0, wait=True)', lambda: arm.set_gripper_position(0, wait=True, timeout=10))
     step('gripper', 'get_gripper_err_code()', arm.get_gripper_err_code)
+    step('gripper', 'set_gripper_position(600, wait=True)', lambda: arm.set_gripper_position(600, wait=True, timeout=10))
+    proxy.step = 'grip'
+    sim_control({'op': 'gripper_object', 'width_pulses': 300})  # an object 300 pulses wide
+    step('grip', 'set_gripper_position(0, wait=True) onto an object',
+         lambda: arm.set_gripper_position(0, wait=True, timeout=10))
+    step('grip', 'get_gripper_status()', arm.get_gripper_status)
+    step('grip', 'get_gripper_position()', arm.get_gripper_position)
+
+    step('reduced', 'get_reduced_mode()', arm.get_reduced_mode)
+    step('reduced', 'set_reduced_mode(True)', lambda: arm.set_reduced_mode(True))
+    step('reduced', 'get_reduced_mode()', arm.get_reduced_mode)
+    step('reduced', 'set_reduced_mode(False)', lambda: arm.set_reduced_mode(False))
 
     step('errors', 'set_servo_angle(angle=[0, 3.0, 0, 0, 0, 0]) beyond joint 2',
          lambda: arm.set_servo_angle(angle=[0, 3.0, 0, 0, 0, 0], wait=True, timeout=5))
     step('errors', 'set_servo_angle_j(%s) in mode 0' % target, lambda: arm.set_servo_angle_j(target))
-    step('errors', 'get_reduced_mode() (not emulated)', arm.get_reduced_mode)
+    step('errors', 'get_joints_torque() (not emulated)', arm.get_joints_torque)
     step('errors', 'get_err_warn_code()', arm.get_err_warn_code)
     step('errors', 'clean_warn()', arm.clean_warn)
     proxy.step = 'errors'
