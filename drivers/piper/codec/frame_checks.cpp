@@ -31,7 +31,7 @@ bool end_limit_valid(const std::optional<double>& value) {
 
 }  // namespace
 
-const char* refusal(const MotionControl& frame) {
+const char* refusal(const MotionControl& frame, const CodecOptions& /*options*/) {
   if (static_cast<std::uint8_t>(frame.emergency_stop) > 0x02) {
     return "0x150 emergency_stop must be 0 (none), 1 (stop) or 2 (resume)";
   }
@@ -40,7 +40,7 @@ const char* refusal(const MotionControl& frame) {
   return nullptr;
 }
 
-const char* refusal(const ModeControl& frame) {
+const char* refusal(const ModeControl& frame, const CodecOptions& /*options*/) {
   switch (frame.ctrl_mode) {
     case ControlMode::kStandby:
     case ControlMode::kCanCommand:
@@ -60,11 +60,11 @@ const char* refusal(const ModeControl& frame) {
   return nullptr;
 }
 
-const char* refusal(const MoveCPoint& frame) {
+const char* refusal(const MoveCPoint& frame, const CodecOptions& /*options*/) {
   return frame.index > 3 ? "0x158 point index must be 0 … 3 (1 start, 2 middle, 3 end)" : nullptr;
 }
 
-const char* refusal(const GripperControl& frame) {
+const char* refusal(const GripperControl& frame, const CodecOptions& /*options*/) {
   if (!counts_within(frame.effort_nm, kEffortUnitNm, kMaxGripperEffortCounts)) {
     return "0x159 gripper effort must be 0 … 5 N·m";
   }
@@ -74,7 +74,7 @@ const char* refusal(const GripperControl& frame) {
   return nullptr;
 }
 
-const char* refusal(const MasterSlaveConfig& frame) {
+const char* refusal(const MasterSlaveConfig& frame, const CodecOptions& /*options*/) {
   if (frame.linkage != 0x00 && frame.linkage != 0xFA && frame.linkage != 0xFC) {
     return "0x470 linkage must be 0x00 (none), 0xFA (leader) or 0xFC (follower)";
   }
@@ -85,12 +85,12 @@ const char* refusal(const MasterSlaveConfig& frame) {
   return nullptr;
 }
 
-const char* refusal(const MotorEnable& frame) {
+const char* refusal(const MotorEnable& frame, const CodecOptions& /*options*/) {
   if ((frame.motor >= 1 && frame.motor <= kAllJoints) || frame.motor == kAllMotors) return nullptr;
   return "0x471 motor must be 1 … 6, or 7 or 0xFF for all";
 }
 
-const char* refusal(const JointLimitQuery& frame) {
+const char* refusal(const JointLimitQuery& frame, const CodecOptions& /*options*/) {
   return frame.joint >= 1 && frame.joint <= kAllJoints ? nullptr : "0x472 joint must be 1 … 6, or 7 for all";
 }
 
@@ -112,7 +112,7 @@ const char* refusal(const JointConfig& frame, const CodecOptions& options) {
   return nullptr;
 }
 
-const char* refusal(const ParamEnquiry& frame) {
+const char* refusal(const ParamEnquiry& frame, const CodecOptions& /*options*/) {
   if (frame.query > 0x04) return "0x477 query must be 0 … 4 (none, end limits, crash levels, trajectory, gripper)";
   if (frame.setting > 0x02) return "0x477 setting must be 0 … 2 (none, reset end limits, reset joint limits)";
   if (frame.feedback_48x > 0x02) return "0x477 0x48x feedback switch must be 0 (no change), 1 (on) or 2 (off)";
@@ -120,7 +120,7 @@ const char* refusal(const ParamEnquiry& frame) {
   return nullptr;
 }
 
-const char* refusal(const EndVelAccSet& frame) {
+const char* refusal(const EndVelAccSet& frame, const CodecOptions& /*options*/) {
   const EndVelAcc& v = frame.values;
   if (end_limit_valid(v.max_linear_velocity_m_s) && end_limit_valid(v.max_angular_velocity_rad_s) &&
       end_limit_valid(v.max_linear_acceleration_m_s2) && end_limit_valid(v.max_angular_acceleration_rad_s2)) {
@@ -129,7 +129,7 @@ const char* refusal(const EndVelAccSet& frame) {
   return "0x479 end-effector limits must each be 0 … 65.535 (uint16 in 0.001 units)";
 }
 
-const char* refusal(const GripperParamSet& frame) {
+const char* refusal(const GripperParamSet& frame, const CodecOptions& /*options*/) {
   const GripperParams& p = frame.params;
   if (p.teaching_range_percent < 100 || p.teaching_range_percent > 200) {
     return "0x47D teaching range must be 100 … 200 %";

@@ -374,18 +374,18 @@ CanMessage encode(const GripperParamReply& frame, const CodecOptions& options = 
 /// Why the arm would not take this frame (the argument ranges the vendor SDK refuses), or nullptr
 /// when it may be sent: a static text naming the field and what it accepts. encode() does not
 /// check (it saturates); callers refuse with this text where values enter. No allocation.
-const char* refusal(const MotionControl& frame);
-const char* refusal(const ModeControl& frame);
-const char* refusal(const MoveCPoint& frame);
-const char* refusal(const GripperControl& frame);
-const char* refusal(const MasterSlaveConfig& frame);
-const char* refusal(const MotorEnable& frame);
-const char* refusal(const JointLimitQuery& frame);
+const char* refusal(const MotionControl& frame, const CodecOptions& options = {});
+const char* refusal(const ModeControl& frame, const CodecOptions& options = {});
+const char* refusal(const MoveCPoint& frame, const CodecOptions& options = {});
+const char* refusal(const GripperControl& frame, const CodecOptions& options = {});
+const char* refusal(const MasterSlaveConfig& frame, const CodecOptions& options = {});
+const char* refusal(const MotorEnable& frame, const CodecOptions& options = {});
+const char* refusal(const JointLimitQuery& frame, const CodecOptions& options = {});
 const char* refusal(const JointLimitSet& frame, const CodecOptions& options = {});
 const char* refusal(const JointConfig& frame, const CodecOptions& options = {});
-const char* refusal(const ParamEnquiry& frame);
-const char* refusal(const EndVelAccSet& frame);
-const char* refusal(const GripperParamSet& frame);
+const char* refusal(const ParamEnquiry& frame, const CodecOptions& options = {});
+const char* refusal(const EndVelAccSet& frame, const CodecOptions& options = {});
+const char* refusal(const GripperParamSet& frame, const CodecOptions& options = {});
 
 /// The frame a message carries, or nullopt for an unknown id, an extended or FD or error frame,
 /// a payload shorter than the frame needs, or an MIT frame whose CRC does not match. Longer

@@ -79,6 +79,16 @@ class PiperOps {
   PiperDriver& driver_;
 };
 
+/// `frame` encoded, or the codec's refusal() as an invalid-argument error of `op`: the last check
+/// before an op's values reach the arm.
+template <typename Frame>
+Result<CanMessage> checked_encode(std::string_view op, const Frame& frame, const CodecOptions& options) {
+  if (const char* reason = refusal(frame, options)) {
+    return make_error(ErrorCode::kInvalidArgument, std::string(op) + ": " + reason);
+  }
+  return encode(frame, options);
+}
+
 /// JSON of decoded replies, shared by queries and settings that answer with the new values.
 nlohmann::json to_json(const CartesianPose& pose);
 nlohmann::json to_json(const GripperParams& params);
