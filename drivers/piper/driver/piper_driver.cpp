@@ -321,8 +321,9 @@ void PiperDriver::fill_feedback(driver::Feedback& out, std::int64_t now_ns) noex
     gripper_last_ns_ = now_ns;
     out.joints[kArmJoints] = {stroke, speed, arm_.gripper.effort_nm};
   }
+  out.has_end_pose = fk_enabled_.load(std::memory_order_relaxed);
+  if (!out.has_end_pose) return;
   const CartesianPose pose = forward_kinematics(q, params_.dh);
-  out.has_end_pose = true;
   out.end_pose.position_m = {pose.x_m, pose.y_m, pose.z_m};
   out.end_pose.orientation_xyzw = quaternion_xyzw(pose);
 }

@@ -125,7 +125,8 @@ class PiperDriver final : public driver::Driver {
 
   std::atomic<bool> connected_{false};
   std::atomic<bool> link_lost_{false};
-  std::atomic<bool> hold_for_ops_{false};                      // a motion op drives the arm (see CommandStreamer::plan)
+  std::atomic<bool> fk_enabled_{true};     // the fk_calculation op: rt/end_pose from the joints, or none
+  std::atomic<bool> hold_for_ops_{false};  // a motion op drives the arm (see CommandStreamer::plan)
   driver::RtHandoff<DisableRequest, DisableOutcome> disable_;  // the disable op, decided by write()
   std::atomic<std::uint64_t> tx_frames_{0};
   std::atomic<std::uint64_t> tx_dropped_{0};

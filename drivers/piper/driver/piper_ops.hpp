@@ -64,6 +64,8 @@ class PiperOps {
   Result<nlohmann::json> state(const nlohmann::json& args);
   Result<nlohmann::json> fk(const nlohmann::json& args);
   Result<nlohmann::json> master_commands(const nlohmann::json& args);
+  Result<nlohmann::json> fk_calculation(const nlohmann::json& args);
+  Result<nlohmann::json> trajectory_index(const nlohmann::json& args);
   Result<nlohmann::json> query_param(std::uint8_t query, std::uint32_t reply_id);
 
   // Settings, acknowledged by the arm (ops_settings.cpp).

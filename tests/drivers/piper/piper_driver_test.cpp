@@ -403,6 +403,51 @@ TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   EXPECT_NE(unknown.error().message.find("end_pose"), std::string::npos) << "lists the ops";
 }
 
+// EnableFkCal / DisableFkCal at run time: the flange pose stops and resumes without a reconnect.
+TEST_F(PiperDriverTest, FkCalculationTurnsOffAndOnAtRunTime) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDeviceJoints);
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().has_end_pose; }));
+  const auto off = driver_.call("fk_calculation", {{"enabled", false}});
+  ASSERT_TRUE(off) << off.error().message;
+  EXPECT_EQ(off.value()["enabled"], false);
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return !l.feedback().has_end_pose; }));
+  const auto asked = driver_.call("fk_calculation", nlohmann::json::object());
+  ASSERT_TRUE(asked);
+  EXPECT_EQ(asked.value()["enabled"], false) << "without \"enabled\" the op answers the setting in force";
+  ASSERT_TRUE(driver_.call("fk_calculation", {{"enabled", true}}));
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().has_end_pose; }));
+}
+
+// ArmParamEnquiryAndConfig query 0x03 goes out; the index comes from the status that follows.
+TEST_F(PiperDriverTest, TrajectoryIndexQueryIsSentAndAnswered) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDeviceJoints);
+  const auto index = driver_.call("trajectory_index", nullptr);
+  ASSERT_TRUE(index) << index.error().message;
+  EXPECT_EQ(index.value()["trajectory_index"], 0);
+  EXPECT_EQ(sim_.control({{"op", "state"}})["frames_received"].value("0x477", 0), 1);
+  const auto firmware = driver_.call("firmware", nullptr);
+  ASSERT_TRUE(firmware);
+  EXPECT_EQ(firmware.value()["protocol"], "V2") << "GetCurrentProtocolVersion";
+}
+
+// The ops refuse, with the codec's text, a value the arm does not take before sending anything:
+// at a speed unit of 0.5 mrad/s per count, 3 rad/s is 6000 counts, beyond the SDK's 0 … 3000.
+TEST_F(PiperDriverTest, OpsRefuseWhatTheArmDoesNotTake) {
+  PiperDriver fine_units;
+  ASSERT_TRUE(
+      fine_units.configure(driver_params(sim_.bus_path(), {{"units", {{"max_speed_rad_s_per_count", 0.0005}}}})));
+  ASSERT_TRUE(fine_units.connect());
+  DriverLoop loop(fine_units, kDeviceJoints);
+  const auto refused = fine_units.call("set_max_speed", {{"joint", 1}, {"max_speed_rad_s", 3.0}});
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(refused.error().message,
+            "set_max_speed: 0x474 max joint speed must be 0 … 3000 counts (0 … 3 rad/s at the SDK's unit)");
+  EXPECT_EQ(sim_.control({{"op", "state"}})["frames_received"].value("0x474", 0), 0) << "nothing was sent";
+}
+
 // ReqMasterArmMoveToHome (0x191): the SDK's three modes, byte for byte; anything else refused.
 TEST_F(PiperDriverTest, MasterHomeSendsTheLeaderArmRequest) {
   ASSERT_TRUE(driver_.connect());
