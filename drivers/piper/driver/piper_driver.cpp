@@ -47,6 +47,7 @@ Result<void> PiperDriver::configure(const nlohmann::json& params) {
   if (!parsed) return parsed.error();
   params_ = std::move(parsed.value());
   codec_ = params_.codec;
+  for (std::size_t j = 0; j < kArmJoints; ++j) configured_limits_[j] = params_.joints[j].limits;
   transport_ = transport::make_can_transport(params_.can);
   const std::string name = transport_->describe();
   std::snprintf(link_name_.data(), link_name_.size(), "%s", name.c_str());
@@ -106,9 +107,10 @@ Result<void> PiperDriver::open_and_check_link() {
     return fed.error();
   }
   if (params_.firmware == "auto") detect_firmware();
+  if (!abort_.requested()) read_arm_limits();
   if (abort_.requested()) {
     transport_->close();
-    return driver::aborted_error("reading the arm's firmware version");
+    return driver::aborted_error("reading the arm's firmware version and limits");
   }
   streamer_.configure(params_, codec_);
   replies_.clear();

@@ -384,6 +384,38 @@ TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
   ASSERT_TRUE(zeroed) << zeroed.error().message;
 }
 
+// At connect the driver reads each joint's limits from the arm (0x472 → 0x473, the SDK's
+// PiperInit); the arm's narrower range wins over the config, a wider one never does.
+TEST_F(PiperDriverTest, TheArmsNarrowerLimitsNarrowTheConfigAtConnect) {
+  ASSERT_TRUE(driver_.connect());
+  {
+    DriverLoop loop(driver_, kDeviceJoints);
+    const auto narrowed =
+        driver_.call("set_joint_limits", {{"joint", 1}, {"max_angle_rad", 1.0}, {"max_speed_rad_s", 1.5}});
+    ASSERT_TRUE(narrowed) << narrowed.error().message;
+  }
+  driver_.disconnect();
+  ASSERT_TRUE(driver_.connect());
+  const driver::DeviceDescription description = driver_.describe();
+  EXPECT_NEAR(description.joints[0].limits.position_max_rad, 1.0, 0.002);
+  EXPECT_NEAR(description.joints[0].limits.position_min_rad, -2.618, 0.002) << "the arm's own, as configured";
+  EXPECT_NEAR(description.joints[0].limits.velocity_max_rad_s, 1.5, 0.002);
+  EXPECT_NEAR(description.joints[1].limits.position_max_rad, 3.14, 0.002) << "unchanged joints keep the config";
+  const driver::Diagnostics diagnostics = driver_.diagnostics();
+  const auto note =
+      std::find_if(diagnostics.begin(), diagnostics.end(), [](const auto& kv) { return kv.first == "arm_limits"; });
+  ASSERT_NE(note, diagnostics.end());
+  EXPECT_NE(note->second.find("joint1 max 2.618→1.000 rad"), std::string::npos) << note->second;
+  driver_.disconnect();
+
+  PiperDriver narrow_config;  // a config narrower than the arm stays as it is
+  ASSERT_TRUE(
+      narrow_config.configure(driver_params(sim_.bus_path(), {{"joints", {{"joint1", {{"position_max_rad", 0.5}}}}}})));
+  ASSERT_TRUE(narrow_config.connect());
+  EXPECT_NEAR(narrow_config.describe().joints[0].limits.position_max_rad, 0.5, 1e-9);
+  narrow_config.disconnect();
+}
+
 TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kDeviceJoints);
