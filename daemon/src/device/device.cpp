@@ -1,5 +1,6 @@
 #include "device/device.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include <spdlog/spdlog.h>
@@ -24,6 +25,35 @@ Result<void> narrow(double& limit, const std::optional<double>& requested, bool 
   }
   limit = *requested;
   return {};
+}
+
+// What a driver describes once connected (limits it read from the device) may narrow the
+// model's limits, never widen them; each narrowing is logged.
+void narrow_to_connected(control::DeviceModel& model, const driver::DeviceDescription& connected) {
+  const std::size_t count = std::min(model.limits.size(), connected.joints.size());
+  for (std::size_t j = 0; j < count; ++j) {
+    driver::JointLimits& limits = model.limits[j];
+    const driver::JointLimits& device = connected.joints[j].limits;
+    const auto tighten = [&](double& limit, double value, bool upper, const char* key) {
+      if (upper ? value >= limit : value <= limit) return;
+      spdlog::warn("device '{}': joint '{}' {} narrowed from {} to {} by the limits the device reports", model.name,
+                   model.joint_names[j], key, limit, value);
+      limit = value;
+    };
+    const double min_before = limits.position_min_rad;
+    const double max_before = limits.position_max_rad;
+    tighten(limits.position_min_rad, device.position_min_rad, false, "position_min_rad");
+    tighten(limits.position_max_rad, device.position_max_rad, true, "position_max_rad");
+    if (limits.position_min_rad >= limits.position_max_rad) {
+      spdlog::warn("device '{}': joint '{}': the device's position range does not overlap the config's; keeping {}…{}",
+                   model.name, model.joint_names[j], min_before, max_before);
+      limits.position_min_rad = min_before;
+      limits.position_max_rad = max_before;
+    }
+    tighten(limits.velocity_max_rad_s, device.velocity_max_rad_s, true, "velocity_max_rad_s");
+    tighten(limits.acceleration_max_rad_s2, device.acceleration_max_rad_s2, true, "acceleration_max_rad_s2");
+    tighten(limits.effort_max_nm, device.effort_max_nm, true, "effort_max_nm");
+  }
 }
 
 }  // namespace
@@ -102,6 +132,7 @@ Result<void> Device::start(LoopRunner runner) {
     spdlog::warn("device '{}' ({}): not reachable yet: {}; starting it as a lost link and retrying every {} ms",
                  config_.name, config_.driver, connected.error().message, config_.reconnect_interval_ms);
   }
+  narrow_to_connected(model_, plugin_->driver().describe());
   connected_ = true;  // from here on the driver is ours to disconnect, whether or not it is connected now
 
   LoopSettings settings;

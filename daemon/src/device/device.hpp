@@ -31,7 +31,8 @@ class Device {
   /// How the loop runs: on its own RT thread at rate_hz (robotd), or a tick at a time when the
   /// caller says (deterministic tests of the services around a loop, at simulated times).
   enum class LoopRunner { kThread, kCaller };
-  /// Connects the driver and starts the RT loop.
+  /// Connects the driver and starts the RT loop. Limits the connected driver describes (read
+  /// from the device, e.g. the PiPER's 0x473) narrow the model's, never widen them.
   Result<void> start(LoopRunner runner = LoopRunner::kThread);
   /// LoopRunner::kCaller only: one tick due at `deadline_ns`, run at `now_ns`.
   void tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept { loop_->tick(deadline_ns, now_ns); }

@@ -208,7 +208,7 @@ struct ParamEnquiry {  // 0x477
   std::uint8_t query =
       0;  // 1 end vel/acc (→0x478), 2 crash levels (→0x47B), 3 trajectory index, 4 gripper params (→0x47E)
   std::uint8_t setting = 0;               // 1 reset end vel/acc, 2 reset all joint limits
-  std::uint8_t feedback_48x = 0;          // 0 no change, 1 enable, 2 disable
+  std::uint8_t feedback_48x = 0;          // 0 no change, 1 enable, 2 disable (pyAgxArm's code; docs/drivers/piper.md)
   std::optional<std::uint8_t> payload{};  // 0 empty, 1 half, 2 full; nullopt: byte 3 = 0, byte 4 = 0x03 (SDK default)
 };
 
@@ -370,6 +370,22 @@ CanMessage encode(const EndVelAccReply& frame, const CodecOptions& options = {})
 CanMessage encode(const CrashProtectionReply& frame, const CodecOptions& options = {});
 CanMessage encode(const JointAccReply& frame, const CodecOptions& options = {});
 CanMessage encode(const GripperParamReply& frame, const CodecOptions& options = {});
+
+/// Why the arm would not take this frame (the argument ranges the vendor SDK refuses), or nullptr
+/// when it may be sent: a static text naming the field and what it accepts. encode() does not
+/// check (it saturates); callers refuse with this text where values enter. No allocation.
+const char* refusal(const MotionControl& frame, const CodecOptions& options = {});
+const char* refusal(const ModeControl& frame, const CodecOptions& options = {});
+const char* refusal(const MoveCPoint& frame, const CodecOptions& options = {});
+const char* refusal(const GripperControl& frame, const CodecOptions& options = {});
+const char* refusal(const MasterSlaveConfig& frame, const CodecOptions& options = {});
+const char* refusal(const MotorEnable& frame, const CodecOptions& options = {});
+const char* refusal(const JointLimitQuery& frame, const CodecOptions& options = {});
+const char* refusal(const JointLimitSet& frame, const CodecOptions& options = {});
+const char* refusal(const JointConfig& frame, const CodecOptions& options = {});
+const char* refusal(const ParamEnquiry& frame, const CodecOptions& options = {});
+const char* refusal(const EndVelAccSet& frame, const CodecOptions& options = {});
+const char* refusal(const GripperParamSet& frame, const CodecOptions& options = {});
 
 /// The frame a message carries, or nullopt for an unknown id, an extended or FD or error frame,
 /// a payload shorter than the frame needs, or an MIT frame whose CRC does not match. Longer

@@ -29,6 +29,7 @@ driver::Diagnostics PiperDriver::diagnostics() const {
       {"firmware",
        firmware_note_.empty() ? software_version(firmware_text_).value_or(params_.firmware) : firmware_note_},
   };
+  if (!arm_limits_note_.empty()) values.emplace_back("arm_limits", arm_limits_note_);
   if (arm.status.angle_limit_bits != 0 || arm.status.comm_error_bits != 0) {
     std::array<char, 64> bits{};
     std::snprintf(bits.data(), bits.size(), "angle limit 0x%02X, communication 0x%02X", arm.status.angle_limit_bits,

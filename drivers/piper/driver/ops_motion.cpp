@@ -145,13 +145,15 @@ Result<nlohmann::json> PiperOps::mode(const nlohmann::json& args) {
   const std::string installation =
       reader.string_or("installation", "unchanged", {"unchanged", "horizontal", "side_left", "side_right"});
   if (auto error = arguments.finish()) return *error;
-  if (auto refused = take_arm_for("mode")) return *refused;
   const ModeControl control{.ctrl_mode = *control_mode_named(ctrl),
                             .move_mode = *move_mode_named(move),
                             .speed_percent = static_cast<std::uint8_t>(speed),
                             .mit = mit,
                             .installation = installation_code(installation)};
-  if (auto failed = send_all(std::array{encode(control, driver_.codec_)})) return *failed;
+  const auto frame = checked_encode("mode", control, driver_.codec_);
+  if (!frame) return frame.error();
+  if (auto refused = take_arm_for("mode")) return *refused;
+  if (auto failed = send_all(std::array{frame.value()})) return *failed;
   return nlohmann::json{{"sent", "ModeCtrl"},     {"ctrl_mode", ctrl}, {"move_mode", move},
                         {"speed_percent", speed}, {"mit", mit},        {"installation", installation}};
 }
@@ -170,11 +172,13 @@ Result<nlohmann::json> PiperOps::gripper(const nlohmann::json& args) {
   const bool clear_error = reader.boolean_or("clear_error", false);
   const bool set_zero = reader.boolean_or("set_zero", false);
   if (auto error = arguments.finish()) return *error;
-  if (auto refused = take_arm_for("gripper")) return *refused;
   GripperEnable code = enable ? GripperEnable::kEnable : GripperEnable::kDisable;
   if (clear_error) code = enable ? GripperEnable::kEnableClearError : GripperEnable::kDisableClearError;
   const GripperControl control{.stroke_m = stroke, .effort_nm = effort, .enable = code, .set_zero = set_zero};
-  if (auto failed = send_all(std::array{encode(control, driver_.codec_)})) return *failed;
+  const auto frame = checked_encode("gripper", control, driver_.codec_);
+  if (!frame) return frame.error();
+  if (auto refused = take_arm_for("gripper")) return *refused;
+  if (auto failed = send_all(std::array{frame.value()})) return *failed;
   return nlohmann::json{{"sent", "GripperCtrl"}, {"stroke_m", stroke},         {"effort_nm", effort},
                         {"enable", enable},      {"clear_error", clear_error}, {"set_zero", set_zero}};
 }
@@ -246,8 +250,10 @@ Result<nlohmann::json> PiperOps::master_slave(const nlohmann::json& args) {
   config.control_offset = id_offset(reader, "control_offset");
   config.linkage_offset = id_offset(reader, "linkage_offset");
   if (auto error = arguments.finish()) return *error;
+  const auto frame = checked_encode("master_slave", config, driver_.codec_);
+  if (!frame) return frame.error();
   if (auto refused = take_arm_for("master_slave")) return *refused;
-  if (auto failed = send_all(std::array{encode(config, driver_.codec_)})) return *failed;
+  if (auto failed = send_all(std::array{frame.value()})) return *failed;
   return nlohmann::json{{"sent", "MasterSlaveConfig"},
                         {"role", role},
                         {"feedback_offset", config.feedback_offset},

@@ -1,11 +1,16 @@
 // Ops that read: the arm's stored parameters (request → reply), and what the driver has seen.
+#include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "driver/piper_ops.hpp"
 #include "kinematics/piper_kinematics.hpp"
 
 namespace robotd::piper {
 namespace {
+
+constexpr const char* kProtocolVersion = "V2";        // the SDK's GetCurrentProtocolVersion: ARM_PROTOCOL_V2
+constexpr std::uint8_t kTrajectoryIndexQuery = 0x03;  // 0x477 byte 0
 
 template <class T>
 std::optional<T> decoded(const CanMessage& message, const CodecOptions& options) {
@@ -106,7 +111,8 @@ Result<nlohmann::json> PiperOps::firmware(const nlohmann::json& args) {
   return nlohmann::json{{"text", printable},
                         {"software_version", version ? nlohmann::json(*version) : nullptr},
                         {"mit_layout", driver_.codec_.mit_layout == MitLayout::kTorque12 ? "12-bit torque, no CRC"
-                                                                                         : "8-bit torque + CRC"}};
+                                                                                         : "8-bit torque + CRC"},
+                        {"protocol", kProtocolVersion}};
 }
 
 Result<nlohmann::json> PiperOps::query_param(std::uint8_t query, std::uint32_t reply_id) {
@@ -195,6 +201,34 @@ Result<nlohmann::json> PiperOps::fk(const nlohmann::json& args) {
                         {"dh", driver_.params_.dh == DhVariant::kOffset ? "offset" : "plain"},
                         {"flange", to_json(forward_kinematics(q, driver_.params_.dh))},
                         {"links", links}};
+}
+
+Result<nlohmann::json> PiperOps::fk_calculation(const nlohmann::json& args) {
+  OpArguments arguments("fk_calculation", args);
+  const bool enabled = arguments.reader().boolean_or("enabled", driver_.fk_enabled_.load(std::memory_order_relaxed));
+  if (auto error = arguments.finish()) return *error;
+  driver_.fk_enabled_.store(enabled, std::memory_order_relaxed);
+  return nlohmann::json{{"enabled", driver_.fk_enabled_.load(std::memory_order_relaxed)}};
+}
+
+Result<nlohmann::json> PiperOps::trajectory_index(const nlohmann::json& args) {
+  if (auto error = no_arguments("trajectory_index", args)) return *error;
+  // The vendor publishes no reply frame for query 0x03; the arm carries the index in every
+  // status frame, so the answer is the first status that arrives after the query.
+  const std::int64_t asked_ns = driver_.snapshot().arm.last_status_ns;
+  if (driver_.send(encode(ParamEnquiry{.query = kTrajectoryIndexQuery}, driver_.codec_)) != transport::CanIo::kDone) {
+    return make_error(ErrorCode::kTransport, "could not send the trajectory-index query (0x477)");
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(driver_.params_.reply_timeout_ms);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const ArmSnapshot snapshot = driver_.snapshot();
+    if (snapshot.arm.last_status_ns > asked_ns) {
+      return nlohmann::json{{"trajectory_index", snapshot.arm.status.trajectory_index}};
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return make_error(ErrorCode::kTimeout, "no status frame (0x2A1) within " +
+                                             std::to_string(driver_.params_.reply_timeout_ms) + " ms of the query");
 }
 
 Result<nlohmann::json> PiperOps::master_commands(const nlohmann::json& args) {

@@ -39,7 +39,9 @@ Result<nlohmann::json> PiperOps::set_joint_limits(const nlohmann::json& args) {
   }
   if (auto error = arguments.finish()) return *error;
   set.joint = *joint;
-  auto acked = driver_.set_and_await_ack(encode(set, driver_.codec_), kAckJointLimits);
+  const auto frame = checked_encode("set_joint_limits", set, driver_.codec_);
+  if (!frame) return frame.error();
+  auto acked = driver_.set_and_await_ack(frame.value(), kAckJointLimits);
   if (!acked) return acked.error();
   return nlohmann::json{{"acknowledged", "MotorAngleLimitMaxSpdSet"}, {"joint", *joint}};
 }
@@ -51,8 +53,10 @@ Result<nlohmann::json> PiperOps::set_max_speed(const nlohmann::json& args) {
   const auto speed = arguments.reader().number("max_speed_rad_s", NumberRange{.min = 0, .max = 3});
   if (auto error = arguments.finish()) return *error;
   for (const std::uint8_t each : joints_of(*joint)) {
-    auto acked = driver_.set_and_await_ack(
-        encode(JointLimitSet{.joint = each, .max_speed_rad_s = speed}, driver_.codec_), kAckJointLimits);
+    const auto frame =
+        checked_encode("set_max_speed", JointLimitSet{.joint = each, .max_speed_rad_s = speed}, driver_.codec_);
+    if (!frame) return frame.error();
+    auto acked = driver_.set_and_await_ack(frame.value(), kAckJointLimits);
     if (!acked) return make_error(acked.error().code, "joint " + std::to_string(each) + ": " + acked.error().message);
   }
   return nlohmann::json{{"acknowledged", "MotorMaxSpdSet"}, {"joint", joint_json(*joint)}, {"max_speed_rad_s", *speed}};
@@ -78,7 +82,9 @@ Result<nlohmann::json> PiperOps::joint_config(const nlohmann::json& args) {
     if (auto refused = take_arm_for("joint_config")) return *refused;
   }
   config.joint = *joint;
-  auto acked = driver_.set_and_await_ack(encode(config, driver_.codec_), kAckJointConfig);
+  const auto frame = checked_encode("joint_config", config, driver_.codec_);
+  if (!frame) return frame.error();
+  auto acked = driver_.set_and_await_ack(frame.value(), kAckJointConfig);
   if (!acked) return acked.error();
   nlohmann::json reply{{"acknowledged", "JointConfig"}, {"joint", joint_json(*joint)}};
   if (config.set_zero) reply["zero_set"] = acked.value().zero_set;
@@ -91,9 +97,10 @@ Result<nlohmann::json> PiperOps::set_max_acc(const nlohmann::json& args) {
   arguments.reader().require("max_acc_rad_s2", "an acceleration in rad/s², 0..5");
   const auto acc = arguments.reader().number("max_acc_rad_s2", NumberRange{.min = 0, .max = 5});
   if (auto error = arguments.finish()) return *error;
-  auto acked = driver_.set_and_await_ack(
-      encode(JointConfig{.joint = *joint, .apply_max_acc = true, .max_acc_rad_s2 = *acc}, driver_.codec_),
-      kAckJointConfig);
+  const auto frame = checked_encode(
+      "set_max_acc", JointConfig{.joint = *joint, .apply_max_acc = true, .max_acc_rad_s2 = *acc}, driver_.codec_);
+  if (!frame) return frame.error();
+  auto acked = driver_.set_and_await_ack(frame.value(), kAckJointConfig);
   if (!acked) return acked.error();
   return nlohmann::json{{"acknowledged", "JointMaxAccConfig"}, {"joint", joint_json(*joint)}, {"max_acc_rad_s2", *acc}};
 }
@@ -118,7 +125,9 @@ Result<nlohmann::json> PiperOps::param_config(const nlohmann::json& args) {
                  "end_limits, crash_protection and gripper_params ops)");
   }
   if (auto error = arguments.finish()) return *error;
-  auto acked = driver_.set_and_await_ack(encode(enquiry, driver_.codec_), kAckParams);
+  const auto frame = checked_encode("param_config", enquiry, driver_.codec_);
+  if (!frame) return frame.error();
+  auto acked = driver_.set_and_await_ack(frame.value(), kAckParams);
   if (!acked) return acked.error();
   return nlohmann::json{{"acknowledged", "ArmParamEnquiryAndConfig"}};
 }
@@ -138,7 +147,9 @@ Result<nlohmann::json> PiperOps::set_end_limits(const nlohmann::json& args) {
     reader.error("max_linear_velocity_m_s", "give at least one limit");
   }
   if (auto error = arguments.finish()) return *error;
-  auto acked = driver_.set_and_await_ack(encode(set, driver_.codec_), kAckEndLimits);
+  const auto frame = checked_encode("set_end_limits", set, driver_.codec_);
+  if (!frame) return frame.error();
+  auto acked = driver_.set_and_await_ack(frame.value(), kAckEndLimits);
   if (!acked) return acked.error();
   return nlohmann::json{{"acknowledged", "EndSpdAndAccParamSet"}, {"set", to_json(set.values)}};
 }
@@ -182,7 +193,9 @@ Result<nlohmann::json> PiperOps::set_gripper_params(const nlohmann::json& args) 
   set.params.teaching_friction = static_cast<std::uint8_t>(reader.integer_or("teaching_friction", 1, 1, 10));
   if (auto error = arguments.finish()) return *error;
   // The arm does not acknowledge 0x47D; read the parameters back as the SDK demo does.
-  if (driver_.send(encode(set, driver_.codec_)) != transport::CanIo::kDone) {
+  const auto frame = checked_encode("set_gripper_params", set, driver_.codec_);
+  if (!frame) return frame.error();
+  if (driver_.send(frame.value()) != transport::CanIo::kDone) {
     return make_error(ErrorCode::kTransport, "could not send 0x47D");
   }
   auto stored = query_param(4, can_id::kGripperParamReply);

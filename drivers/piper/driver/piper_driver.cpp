@@ -47,6 +47,7 @@ Result<void> PiperDriver::configure(const nlohmann::json& params) {
   if (!parsed) return parsed.error();
   params_ = std::move(parsed.value());
   codec_ = params_.codec;
+  for (std::size_t j = 0; j < kArmJoints; ++j) configured_limits_[j] = params_.joints[j].limits;
   transport_ = transport::make_can_transport(params_.can);
   const std::string name = transport_->describe();
   std::snprintf(link_name_.data(), link_name_.size(), "%s", name.c_str());
@@ -106,9 +107,10 @@ Result<void> PiperDriver::open_and_check_link() {
     return fed.error();
   }
   if (params_.firmware == "auto") detect_firmware();
+  if (!abort_.requested()) read_arm_limits();
   if (abort_.requested()) {
     transport_->close();
-    return driver::aborted_error("reading the arm's firmware version");
+    return driver::aborted_error("reading the arm's firmware version and limits");
   }
   streamer_.configure(params_, codec_);
   replies_.clear();
@@ -321,8 +323,9 @@ void PiperDriver::fill_feedback(driver::Feedback& out, std::int64_t now_ns) noex
     gripper_last_ns_ = now_ns;
     out.joints[kArmJoints] = {stroke, speed, arm_.gripper.effort_nm};
   }
+  out.has_end_pose = fk_enabled_.load(std::memory_order_relaxed);
+  if (!out.has_end_pose) return;
   const CartesianPose pose = forward_kinematics(q, params_.dh);
-  out.has_end_pose = true;
   out.end_pose.position_m = {pose.x_m, pose.y_m, pose.z_m};
   out.end_pose.orientation_xyzw = quaternion_xyzw(pose);
 }

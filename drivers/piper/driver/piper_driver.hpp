@@ -86,6 +86,8 @@ class PiperDriver final : public driver::Driver {
   Result<void> open_and_check_link();
   Result<void> await_arm_feedback(std::chrono::milliseconds timeout);
   void detect_firmware();
+  /// 0x472 → 0x473 for J1–J6 (the SDK's PiperInit): params_ limits = configured ∩ the arm's.
+  void read_arm_limits();
   Result<void> clear_arm_errors();
   /// Receives what is waiting, applies it to arm_ and hands replies to the reply ring, as read()
   /// does (only while the RT loop does not run).
@@ -116,6 +118,8 @@ class PiperDriver final : public driver::Driver {
   CodecOptions codec_;  // params_.codec with the MIT layout detected at connect
   std::string firmware_text_;
   std::string firmware_note_;
+  std::array<driver::JointLimits, kArmJoints> configured_limits_{};  // before the arm narrowed them
+  std::string arm_limits_note_;       // what the arm's own limits narrowed at the last connect
   std::array<char, 96> link_name_{};  // "stand-in /tmp/piper.sock", for RT messages
 
   std::unique_ptr<transport::CanTransport> transport_;
@@ -125,7 +129,8 @@ class PiperDriver final : public driver::Driver {
 
   std::atomic<bool> connected_{false};
   std::atomic<bool> link_lost_{false};
-  std::atomic<bool> hold_for_ops_{false};                      // a motion op drives the arm (see CommandStreamer::plan)
+  std::atomic<bool> fk_enabled_{true};     // the fk_calculation op: rt/end_pose from the joints, or none
+  std::atomic<bool> hold_for_ops_{false};  // a motion op drives the arm (see CommandStreamer::plan)
   driver::RtHandoff<DisableRequest, DisableOutcome> disable_;  // the disable op, decided by write()
   std::atomic<std::uint64_t> tx_frames_{0};
   std::atomic<std::uint64_t> tx_dropped_{0};

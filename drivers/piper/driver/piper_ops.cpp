@@ -14,7 +14,7 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 26> kOps{{
+constexpr std::array<OpSpec, 28> kOps{{
     {"end_pose",
      R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "motion": "p"|"l", "speed_percent": 1..100}: )"
      R"(move the flange to a pose with the arm's planner, MOVE P (joint space) or MOVE L (straight line))",
@@ -54,6 +54,12 @@ constexpr std::array<OpSpec, 26> kOps{{
     {"fk", R"({"joints_rad": [6 numbers]}: forward kinematics: the flange and every link's pose, as GetFK )"
            R"((measured joints if omitted))"},
     {"master_commands", R"({}: the last ModeCtrl, joint and gripper commands a master (leader) arm sent on the bus)"},
+    {"fk_calculation",
+     R"({"enabled": bool}: EnableFkCal / DisableFkCal: compute the flange pose (topic rt/end_pose) from the )"
+     R"(measured joints each cycle, or not (answers the setting in force without "enabled"))"},
+    {"trajectory_index",
+     R"({}: ArmParamEnquiryAndConfig query 0x03: the arm's current trajectory index, read from the next )"
+     R"(status frame (0x2A1 byte 5) after the query)"},
     {"set_joint_limits",
      R"({"joint": 1..6, "min_angle_rad", "max_angle_rad", "max_speed_rad_s"}: )"
      R"(MotorAngleLimitMaxSpdSet (0x474, saved in the joint's flash); omitted fields stay)",
@@ -151,6 +157,8 @@ Result<nlohmann::json> PiperOps::call(const std::string& op, const nlohmann::jso
     if (op == "state") return state(args);
     if (op == "fk") return fk(args);
     if (op == "master_commands") return master_commands(args);
+    if (op == "fk_calculation") return fk_calculation(args);
+    if (op == "trajectory_index") return trajectory_index(args);
     if (op == "set_joint_limits") return set_joint_limits(args);
     if (op == "set_max_speed") return set_max_speed(args);
     if (op == "joint_config") return joint_config(args);

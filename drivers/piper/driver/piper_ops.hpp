@@ -64,6 +64,8 @@ class PiperOps {
   Result<nlohmann::json> state(const nlohmann::json& args);
   Result<nlohmann::json> fk(const nlohmann::json& args);
   Result<nlohmann::json> master_commands(const nlohmann::json& args);
+  Result<nlohmann::json> fk_calculation(const nlohmann::json& args);
+  Result<nlohmann::json> trajectory_index(const nlohmann::json& args);
   Result<nlohmann::json> query_param(std::uint8_t query, std::uint32_t reply_id);
 
   // Settings, acknowledged by the arm (ops_settings.cpp).
@@ -78,6 +80,16 @@ class PiperOps {
 
   PiperDriver& driver_;
 };
+
+/// `frame` encoded, or the codec's refusal() as an invalid-argument error of `op`: the last check
+/// before an op's values reach the arm.
+template <typename Frame>
+Result<CanMessage> checked_encode(std::string_view op, const Frame& frame, const CodecOptions& options) {
+  if (const char* reason = refusal(frame, options)) {
+    return make_error(ErrorCode::kInvalidArgument, std::string(op) + ": " + reason);
+  }
+  return encode(frame, options);
+}
 
 /// JSON of decoded replies, shared by queries and settings that answer with the new values.
 nlohmann::json to_json(const CartesianPose& pose);

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "sdk_units.hpp"
@@ -22,26 +23,42 @@ int integer(const json& args, std::size_t i) { return args.at(i).get<int>(); }
 double number(const json& args, std::size_t i) { return args.at(i).get<double>(); }
 
 Frames one(const CanMessage& message) { return {message}; }
+
+/// robotd's codec refuses what refusal() names, where the SDK raises for the same argument.
+template <typename Frame>
+CanMessage checked(const Frame& frame) {
+  if (const char* reason = refusal(frame)) throw std::invalid_argument(reason);
+  return encode(frame);
+}
+
+/// A byte the SDK takes as 0x00 or 0xAE ("do it"): robotd takes a boolean there (its ops read
+/// JSON true/false), so any other byte cannot reach robotd's codec at all.
+bool magic_flag(const json& args, std::size_t i) {
+  const std::uint8_t value = u8(args, i);
+  if (value != 0x00 && value != kMagic) throw std::invalid_argument("a flag byte is 0x00 or 0xAE");
+  return value == kMagic;
+}
 template <std::size_t N>
 Frames all(const std::array<CanMessage, N>& messages) {
   return {messages.begin(), messages.end()};
 }
 
 Frames motion_control(std::uint8_t stop, std::uint8_t track, std::uint8_t drag) {
-  return one(encode(
+  return one(checked(
       MotionControl{.emergency_stop = static_cast<EmergencyStop>(stop), .track_ctrl = track, .drag_teach_ctrl = drag}));
 }
 
-/// 0x151: robotd's MIT flag is 0xAD or nothing; it never sends the SDK's 0xFF ("invalid").
+/// 0x151: robotd's MIT flag is a boolean (0xAD or 0x00); it refuses the SDK's 0xFF ("invalid"),
+/// a deliberate difference (differences.json).
 Frames mode_control(const json& args, std::uint8_t residence, std::uint8_t installation) {
   const std::uint8_t mit = u8(args, 3);
-  if (mit != 0x00 && mit != 0xAD) throw NotOffered("robotd sends the MIT byte as 0xAD or 0x00 only");
-  return one(encode(ModeControl{.ctrl_mode = static_cast<ControlMode>(u8(args, 0)),
-                                .move_mode = static_cast<MoveMode>(u8(args, 1)),
-                                .speed_percent = u8(args, 2),
-                                .mit = mit == 0xAD,
-                                .residence_time_s = residence,
-                                .installation = installation}));
+  if (mit != 0x00 && mit != kMitFlag) throw std::invalid_argument("the MIT byte is 0xAD or 0x00");
+  return one(checked(ModeControl{.ctrl_mode = static_cast<ControlMode>(u8(args, 0)),
+                                 .move_mode = static_cast<MoveMode>(u8(args, 1)),
+                                 .speed_percent = u8(args, 2),
+                                 .mit = mit == 0xAD,
+                                 .residence_time_s = residence,
+                                 .installation = installation}));
 }
 
 std::optional<double> unless_unchanged(int count, double unit) {
@@ -53,10 +70,19 @@ std::optional<double> deci_deg_unless_unchanged(int count) {
   return rad_of_deci_deg(count);
 }
 
+constexpr std::uint8_t kNoPayload = 0x03;  // 0x477 byte 4 when the payload is not set
+
+/// 0x472 byte 1: 0x01 angle limits and speed, 0x02 acceleration; robotd takes a boolean.
+bool limit_query(const json& args, std::size_t i) {
+  const std::uint8_t value = u8(args, i);
+  if (value != 0x01 && value != 0x02) throw std::invalid_argument("the limit query is 0x01 or 0x02");
+  return value == 0x02;
+}
+
 Frames joint_limit_queries(bool acceleration) {
   Frames frames;
   for (std::uint8_t joint = 1; joint <= kArmJoints; ++joint) {
-    frames.push_back(encode(JointLimitQuery{.joint = joint, .acceleration = acceleration}));
+    frames.push_back(checked(JointLimitQuery{.joint = joint, .acceleration = acceleration}));
   }
   return frames;
 }
@@ -66,11 +92,11 @@ constexpr double kSpeedUnit = 0.001;  // 0x474 max joint speed
 constexpr double kEndUnit = 0.001;    // 0x479
 
 Frames joint_config(std::uint8_t joint, bool set_zero, bool apply_acc, int acc, bool clear_error) {
-  return one(encode(JointConfig{.joint = joint,
-                                .set_zero = set_zero,
-                                .apply_max_acc = apply_acc,
-                                .max_acc_rad_s2 = acc * kAccUnit,
-                                .clear_error = clear_error}));
+  return one(checked(JointConfig{.joint = joint,
+                                 .set_zero = set_zero,
+                                 .apply_max_acc = apply_acc,
+                                 .max_acc_rad_s2 = acc * kAccUnit,
+                                 .clear_error = clear_error}));
 }
 
 const std::map<std::string, std::function<Frames(const json&)>, std::less<>>& calls() {
@@ -95,27 +121,29 @@ const std::map<std::string, std::function<Frames(const json&)>, std::less<>>& ca
          for (std::size_t j = 0; j < q.size(); ++j) q[j] = rad_of_milli_deg(number(a, j));
          return all(encode_joint_targets(q));
        }},
-      {"MoveCAxisUpdateCtrl", [](const json& a) { return one(encode(MoveCPoint{.index = u8(a, 0)})); }},
+      {"MoveCAxisUpdateCtrl", [](const json& a) { return one(checked(MoveCPoint{.index = u8(a, 0)})); }},
       {"GripperCtrl",
        [](const json& a) {
-         return one(encode(GripperControl{.stroke_m = metres_of_micrometres(number(a, 0)),
-                                          .effort_nm = number(a, 1) * 0.001,
-                                          .enable = static_cast<GripperEnable>(u8(a, 2)),
-                                          .set_zero = u8(a, 3) == kMagic}));
+         return one(checked(GripperControl{.stroke_m = metres_of_micrometres(number(a, 0)),
+                                           .effort_nm = number(a, 1) * 0.001,
+                                           .enable = static_cast<GripperEnable>(u8(a, 2)),
+                                           .set_zero = magic_flag(a, 3)}));
        }},
       {"MasterSlaveConfig",
        [](const json& a) {
-         return one(encode(MasterSlaveConfig{.linkage = u8(a, 0),
-                                             .feedback_offset = u8(a, 1),
-                                             .control_offset = u8(a, 2),
-                                             .linkage_offset = u8(a, 3)}));
+         return one(checked(MasterSlaveConfig{.linkage = u8(a, 0),
+                                              .feedback_offset = u8(a, 1),
+                                              .control_offset = u8(a, 2),
+                                              .linkage_offset = u8(a, 3)}));
        }},
-      {"DisableArm", [](const json& a) { return one(encode(MotorEnable{.motor = u8(a, 0), .enable = false})); }},
-      {"EnableArm", [](const json& a) { return one(encode(MotorEnable{.motor = u8(a, 0), .enable = true})); }},
-      {"EnablePiper", [](const json&) { return one(encode(MotorEnable{.motor = kAllJoints, .enable = true})); }},
-      {"DisablePiper", [](const json&) { return one(encode(MotorEnable{.motor = kAllJoints, .enable = false})); }},
+      {"DisableArm", [](const json& a) { return one(checked(MotorEnable{.motor = u8(a, 0), .enable = false})); }},
+      {"EnableArm", [](const json& a) { return one(checked(MotorEnable{.motor = u8(a, 0), .enable = true})); }},
+      {"EnablePiper", [](const json&) { return one(checked(MotorEnable{.motor = kAllJoints, .enable = true})); }},
+      {"DisablePiper", [](const json&) { return one(checked(MotorEnable{.motor = kAllJoints, .enable = false})); }},
       {"SearchMotorMaxAngleSpdAccLimit",
-       [](const json& a) { return one(encode(JointLimitQuery{.joint = u8(a, 0), .acceleration = u8(a, 1) == 0x02})); }},
+       [](const json& a) {
+         return one(checked(JointLimitQuery{.joint = u8(a, 0), .acceleration = limit_query(a, 1)}));
+       }},
       {"SearchAllMotorMaxAngleSpd", [](const json&) { return joint_limit_queries(false); }},
       {"SearchAllMotorMaxAccLimit", [](const json&) { return joint_limit_queries(true); }},
       {"SearchPiperFirmwareVersion", [](const json&) { return one(firmware_request()); }},
@@ -129,34 +157,38 @@ const std::map<std::string, std::function<Frames(const json&)>, std::less<>>& ca
        }},
       {"MotorAngleLimitMaxSpdSet",
        [](const json& a) {
-         return one(encode(JointLimitSet{.joint = u8(a, 0),
-                                         .max_angle_rad = deci_deg_unless_unchanged(integer(a, 1)),
-                                         .min_angle_rad = deci_deg_unless_unchanged(integer(a, 2)),
-                                         .max_speed_rad_s = unless_unchanged(integer(a, 3), kSpeedUnit)}));
+         return one(checked(JointLimitSet{.joint = u8(a, 0),
+                                          .max_angle_rad = deci_deg_unless_unchanged(integer(a, 1)),
+                                          .min_angle_rad = deci_deg_unless_unchanged(integer(a, 2)),
+                                          .max_speed_rad_s = unless_unchanged(integer(a, 3), kSpeedUnit)}));
        }},
       {"MotorMaxSpdSet",
        [](const json& a) {
          return one(
-             encode(JointLimitSet{.joint = u8(a, 0), .max_speed_rad_s = unless_unchanged(integer(a, 1), kSpeedUnit)}));
+             checked(JointLimitSet{.joint = u8(a, 0), .max_speed_rad_s = unless_unchanged(integer(a, 1), kSpeedUnit)}));
        }},
       {"JointConfig",
        [](const json& a) {
-         return joint_config(u8(a, 0), u8(a, 1) == kMagic, u8(a, 2) == kMagic, integer(a, 3), u8(a, 4) == kMagic);
+         return joint_config(u8(a, 0), magic_flag(a, 1), magic_flag(a, 2), integer(a, 3), magic_flag(a, 4));
        }},
       {"JointMaxAccConfig", [](const json& a) { return joint_config(u8(a, 0), false, true, integer(a, 1), false); }},
       {"ArmParamEnquiryAndConfig",
        [](const json& a) {
          ParamEnquiry enquiry{.query = u8(a, 0), .setting = u8(a, 1), .feedback_48x = u8(a, 2)};
-         if (u8(a, 3) == kMagic) enquiry.payload = u8(a, 4);
-         return one(encode(enquiry));
+         if (magic_flag(a, 3)) {
+           enquiry.payload = u8(a, 4);
+         } else if (u8(a, 4) > kNoPayload) {
+           throw std::invalid_argument("the payload is 0 (empty), 1 (half), 2 (full) or 3 (none)");
+         }
+         return one(checked(enquiry));
        }},
       {"EndSpdAndAccParamSet",
        [](const json& a) {
          return one(
-             encode(EndVelAccSet{.values = EndVelAcc{.max_linear_velocity_m_s = number(a, 0) * kEndUnit,
-                                                     .max_angular_velocity_rad_s = number(a, 1) * kEndUnit,
-                                                     .max_linear_acceleration_m_s2 = number(a, 2) * kEndUnit,
-                                                     .max_angular_acceleration_rad_s2 = number(a, 3) * kEndUnit}}));
+             checked(EndVelAccSet{.values = EndVelAcc{.max_linear_velocity_m_s = number(a, 0) * kEndUnit,
+                                                      .max_angular_velocity_rad_s = number(a, 1) * kEndUnit,
+                                                      .max_linear_acceleration_m_s2 = number(a, 2) * kEndUnit,
+                                                      .max_angular_acceleration_rad_s2 = number(a, 3) * kEndUnit}}));
        }},
       {"CrashProtectionConfig",
        [](const json& a) {
@@ -166,9 +198,9 @@ const std::map<std::string, std::function<Frames(const json&)>, std::less<>>& ca
        }},
       {"GripperTeachingPendantParamConfig",
        [](const json& a) {
-         return one(encode(GripperParamSet{.params = GripperParams{.teaching_range_percent = u8(a, 0),
-                                                                   .max_range_mm = u8(a, 1),
-                                                                   .teaching_friction = u8(a, 2)}}));
+         return one(checked(GripperParamSet{.params = GripperParams{.teaching_range_percent = u8(a, 0),
+                                                                    .max_range_mm = u8(a, 1),
+                                                                    .teaching_friction = u8(a, 2)}}));
        }},
       {"ReqMasterArmMoveToHome",
        [](const json& a) { return one(encode(MasterArmHomeRequest{.mode = static_cast<MasterArmHome>(u8(a, 0))})); }},

@@ -971,5 +971,23 @@ TEST(PiperStatusText, GripperFaultBits) {
             "driver error");
 }
 
+// The argument ranges the vendor SDK refuses are named by refusal(); encode() itself saturates.
+TEST(PiperCodecRefusal, NamesTheFieldTheSdkWouldRefuse) {
+  EXPECT_EQ(refusal(ModeControl{}), nullptr);
+  EXPECT_STREQ(refusal(ModeControl{.ctrl_mode = ControlMode::kTeach}),
+               "0x151 ctrl_mode must be 0 (standby), 1 (CAN), 3 (Ethernet), 4 (Wi-Fi) or 7 (offline trajectory); "
+               "teach, remote and linkage-teach are states the arm reports, not modes a host sets");
+  EXPECT_NE(refusal(GripperControl{.effort_nm = 5.001}), nullptr);
+  EXPECT_EQ(refusal(GripperControl{.effort_nm = 5.0}), nullptr);
+  EXPECT_NE(refusal(MasterSlaveConfig{.linkage = 0xFA, .feedback_offset = 0x30}), nullptr);
+  EXPECT_NE(refusal(MotorEnable{.motor = 0}), nullptr);
+  EXPECT_EQ(refusal(MotorEnable{.motor = 0xFF}), nullptr);
+  EXPECT_NE(refusal(JointConfig{.joint = 1, .max_acc_rad_s2 = 5.01}), nullptr);
+  EXPECT_EQ(refusal(JointConfig{.joint = 1, .max_acc_rad_s2 = 327.67}), nullptr);  // 0x7FFF: unchanged
+  EXPECT_NE(refusal(EndVelAccSet{.values = EndVelAcc{.max_linear_velocity_m_s = 65.536}}), nullptr);
+  EXPECT_EQ(refusal(ParamEnquiry{.query = 3}), nullptr);  // the trajectory-index query
+  EXPECT_NE(refusal(GripperParamSet{.params = GripperParams{.max_range_mm = 80}}), nullptr);
+}
+
 }  // namespace
 }  // namespace robotd::piper

@@ -384,6 +384,38 @@ TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
   ASSERT_TRUE(zeroed) << zeroed.error().message;
 }
 
+// At connect the driver reads each joint's limits from the arm (0x472 → 0x473, the SDK's
+// PiperInit); the arm's narrower range wins over the config, a wider one never does.
+TEST_F(PiperDriverTest, TheArmsNarrowerLimitsNarrowTheConfigAtConnect) {
+  ASSERT_TRUE(driver_.connect());
+  {
+    DriverLoop loop(driver_, kDeviceJoints);
+    const auto narrowed =
+        driver_.call("set_joint_limits", {{"joint", 1}, {"max_angle_rad", 1.0}, {"max_speed_rad_s", 1.5}});
+    ASSERT_TRUE(narrowed) << narrowed.error().message;
+  }
+  driver_.disconnect();
+  ASSERT_TRUE(driver_.connect());
+  const driver::DeviceDescription description = driver_.describe();
+  EXPECT_NEAR(description.joints[0].limits.position_max_rad, 1.0, 0.002);
+  EXPECT_NEAR(description.joints[0].limits.position_min_rad, -2.618, 0.002) << "the arm's own, as configured";
+  EXPECT_NEAR(description.joints[0].limits.velocity_max_rad_s, 1.5, 0.002);
+  EXPECT_NEAR(description.joints[1].limits.position_max_rad, 3.14, 0.002) << "unchanged joints keep the config";
+  const driver::Diagnostics diagnostics = driver_.diagnostics();
+  const auto note =
+      std::find_if(diagnostics.begin(), diagnostics.end(), [](const auto& kv) { return kv.first == "arm_limits"; });
+  ASSERT_NE(note, diagnostics.end());
+  EXPECT_NE(note->second.find("joint1 max 2.618→1.000 rad"), std::string::npos) << note->second;
+  driver_.disconnect();
+
+  PiperDriver narrow_config;  // a config narrower than the arm stays as it is
+  ASSERT_TRUE(
+      narrow_config.configure(driver_params(sim_.bus_path(), {{"joints", {{"joint1", {{"position_max_rad", 0.5}}}}}})));
+  ASSERT_TRUE(narrow_config.connect());
+  EXPECT_NEAR(narrow_config.describe().joints[0].limits.position_max_rad, 0.5, 1e-9);
+  narrow_config.disconnect();
+}
+
 TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kDeviceJoints);
@@ -401,6 +433,51 @@ TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   const auto unknown = driver_.call("fly", nullptr);
   ASSERT_FALSE(unknown);
   EXPECT_NE(unknown.error().message.find("end_pose"), std::string::npos) << "lists the ops";
+}
+
+// EnableFkCal / DisableFkCal at run time: the flange pose stops and resumes without a reconnect.
+TEST_F(PiperDriverTest, FkCalculationTurnsOffAndOnAtRunTime) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDeviceJoints);
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().has_end_pose; }));
+  const auto off = driver_.call("fk_calculation", {{"enabled", false}});
+  ASSERT_TRUE(off) << off.error().message;
+  EXPECT_EQ(off.value()["enabled"], false);
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return !l.feedback().has_end_pose; }));
+  const auto asked = driver_.call("fk_calculation", nlohmann::json::object());
+  ASSERT_TRUE(asked);
+  EXPECT_EQ(asked.value()["enabled"], false) << "without \"enabled\" the op answers the setting in force";
+  ASSERT_TRUE(driver_.call("fk_calculation", {{"enabled", true}}));
+  EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().has_end_pose; }));
+}
+
+// ArmParamEnquiryAndConfig query 0x03 goes out; the index comes from the status that follows.
+TEST_F(PiperDriverTest, TrajectoryIndexQueryIsSentAndAnswered) {
+  ASSERT_TRUE(driver_.connect());
+  DriverLoop loop(driver_, kDeviceJoints);
+  const auto index = driver_.call("trajectory_index", nullptr);
+  ASSERT_TRUE(index) << index.error().message;
+  EXPECT_EQ(index.value()["trajectory_index"], 0);
+  EXPECT_EQ(sim_.control({{"op", "state"}})["frames_received"].value("0x477", 0), 1);
+  const auto firmware = driver_.call("firmware", nullptr);
+  ASSERT_TRUE(firmware);
+  EXPECT_EQ(firmware.value()["protocol"], "V2") << "GetCurrentProtocolVersion";
+}
+
+// The ops refuse, with the codec's text, a value the arm does not take before sending anything:
+// at a speed unit of 0.5 mrad/s per count, 3 rad/s is 6000 counts, beyond the SDK's 0 … 3000.
+TEST_F(PiperDriverTest, OpsRefuseWhatTheArmDoesNotTake) {
+  PiperDriver fine_units;
+  ASSERT_TRUE(
+      fine_units.configure(driver_params(sim_.bus_path(), {{"units", {{"max_speed_rad_s_per_count", 0.0005}}}})));
+  ASSERT_TRUE(fine_units.connect());
+  DriverLoop loop(fine_units, kDeviceJoints);
+  const auto refused = fine_units.call("set_max_speed", {{"joint", 1}, {"max_speed_rad_s", 3.0}});
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_EQ(refused.error().message,
+            "set_max_speed: 0x474 max joint speed must be 0 … 3000 counts (0 … 3 rad/s at the SDK's unit)");
+  EXPECT_EQ(sim_.control({{"op", "state"}})["frames_received"].value("0x474", 0), 0) << "nothing was sent";
 }
 
 // ReqMasterArmMoveToHome (0x191): the SDK's three modes, byte for byte; anything else refused.
