@@ -26,18 +26,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-SessionRequest arm_request() {
+SessionRequest keep_arm_request() {
   SessionRequest request;
   request.device = "arm";
   request.on_timeout = Behavior::kKeep;
   request.timeout = 10s;
   return request;
-}
-
-double max_error(const JointState& state, const std::vector<float>& target) {
-  double worst = 0;
-  for (std::size_t j = 0; j < target.size(); ++j) worst = std::max(worst, std::fabs(state.position[j] - target[j]));
-  return worst;
 }
 
 class DdsSecurityTest : public RobotdTest {
@@ -86,7 +80,7 @@ class DdsSecurityTest : public RobotdTest {
 
 TEST_F(DdsSecurityTest, OperatorRequestsControlAndMovesTheArm) {
   start_secure_robotd();
-  auto session = client().request_control(arm_request());
+  auto session = client().request_control(keep_arm_request());
   ASSERT_TRUE(session) << session.error().message;
 
   const std::vector<float> target{0.5F, -0.3F, 0.4F, 0.2F, -0.4F, 0.3F};
@@ -108,7 +102,7 @@ TEST_F(DdsSecurityTest, OperatorRequestsControlAndMovesTheArm) {
 // arm, but neither requests control nor gets a command out, even in a live session's name.
 TEST_F(DdsSecurityTest, ViewerReadsJointStatesButMayNotCommand) {
   start_secure_robotd();
-  auto session = client().request_control(arm_request());
+  auto session = client().request_control(keep_arm_request());
   ASSERT_TRUE(session) << session.error().message;
 
   const auto start = std::chrono::steady_clock::now();
@@ -139,7 +133,7 @@ TEST_F(DdsSecurityTest, ViewerReadsJointStatesButMayNotCommand) {
 // command to a motor, even in the name of a live session whose uuid it has learned.
 TEST_F(DdsSecurityTest, ParticipantsOutsideTheDeploymentNeverReachAMotor) {
   start_secure_robotd();
-  auto session = client().request_control(arm_request());
+  auto session = client().request_control(keep_arm_request());
   ASSERT_TRUE(session) << session.error().message;
   const JointState before = joint_state();
 

@@ -22,12 +22,6 @@ SessionRequest arm_request(std::vector<std::int32_t> motors = {}, Behavior on_ti
   return request;
 }
 
-double max_error(const JointState& state, const std::vector<float>& target) {
-  double worst = 0;
-  for (std::size_t j = 0; j < target.size(); ++j) worst = std::max(worst, std::fabs(state.position[j] - target[j]));
-  return worst;
-}
-
 class SessionTest : public RobotdTest {
  protected:
   void expect_fallback_after_kill(Behavior behavior, const std::string& behavior_name);

@@ -1,5 +1,7 @@
 #include "robotd_fixture.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <thread>
 
 namespace robotd::testing {
@@ -34,6 +36,12 @@ DeviceStatus RobotdTest::device_status(const std::string& device) {
   auto status = client_->next_device_status(device, std::chrono::seconds(3));
   EXPECT_TRUE(status) << status.error().message;
   return status ? status.value() : DeviceStatus{};
+}
+
+double max_error(const JointState& state, const std::vector<float>& target) {
+  double worst = 0;
+  for (std::size_t j = 0; j < target.size(); ++j) worst = std::max(worst, std::fabs(state.position[j] - target[j]));
+  return worst;
 }
 
 JointState RobotdTest::joint_state(const std::string& device) {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,9 @@
 #include "test_domain.hpp"
 
 namespace robotd::testing {
+
+/// The largest |position - target| over the target's joints.
+double max_error(const JointState& state, const std::vector<float>& target);
 
 class RobotdTest : public ::testing::Test {
  protected:

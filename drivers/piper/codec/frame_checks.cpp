@@ -15,8 +15,7 @@ constexpr double kMaxGripperEffortCounts = 5000;  // SDK: 0 … 5000 (5 N·m)
 constexpr double kMaxJointSpeedCounts = 3000;     // 0x474, SDK: 0 … 3000 or 0x7FFF
 constexpr double kMaxJointAccCounts = 500;        // 0x475, SDK: 0 … 500 or 0x7FFF
 constexpr double kMaxEndLimitCounts = 65535;      // 0x479: a uint16 each
-constexpr double kEndLimitUnit = 0.001;
-constexpr std::uint8_t kAllMotors = 0xFF;  // 0x471: the SDK's other spelling of "all"
+constexpr std::uint8_t kAllMotors = 0xFF;         // 0x471: the SDK's other spelling of "all"
 
 /// The wire count of `value` (rounded as the codec rounds), NaN for a NaN value.
 double counts(double value, double unit) { return std::round(value / unit); }

@@ -162,8 +162,7 @@ std::optional<Frame> decode_joint_pair(const CanMessage& message, std::uint32_t 
               .second_rad = from_milli_degrees(get_i32(message.data, 4))};
 }
 
-// 0x478 and 0x479 share four uint16 fields in 0.001 SI units, 0x7FFF meaning "none".
-constexpr double kEndLimitUnit = 0.001;
+// 0x478 and 0x479 share four uint16 fields in kEndLimitUnit, 0x7FFF meaning "none".
 
 void put_end_vel_acc(Payload& data, const EndVelAcc& values) {
   put_u16(data, 0, unsigned_or_unchanged(values.max_linear_velocity_m_s, kEndLimitUnit));

@@ -214,6 +214,7 @@ struct ParamEnquiry {  // 0x477
 
 /// 0x478 (reply) and 0x479 (set): uint16 in 0.001 units. In a set, nullopt fields go out as
 /// 0x7FFF and present values use the whole field (65.535 → FF FF), as in the SDK.
+inline constexpr double kEndLimitUnit = 0.001;  // one count of an EndVelAcc field
 struct EndVelAcc {
   std::optional<double> max_linear_velocity_m_s{};
   std::optional<double> max_angular_velocity_rad_s{};
