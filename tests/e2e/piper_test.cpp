@@ -153,6 +153,29 @@ TEST_F(PiperTest, ArmCollisionIsAFaultWithTheArmsWords) {
 
 // 1 kHz MIXED (MIT) commands from a client for 10 s: how many frames the bus carries, and the
 // loop keeps its period without a heap allocation (the RT rule, with the counter preloaded).
+// The limits an arm keeps (PiperInit's 0x472 queries at connect) narrow the device's limits when
+// robotd starts, never widen them, and robotd says which.
+TEST_F(PiperTest, TheLimitsTheArmKeepsNarrowTheDevicesLimitsAtStart) {
+  start(/*with_sim_arm=*/false);
+  call("set_joint_limits", {{"joint", 1}, {"max_angle_rad", 1.0}, {"max_speed_rad_s", 1.5}});
+  client_.reset();
+  const std::optional<int> exit_status = robotd_->terminate();
+  ASSERT_TRUE(exit_status.has_value());
+  EXPECT_EQ(*exit_status, 0);
+
+  start(/*with_sim_arm=*/false);  // the simulated arm keeps its settings, as the arm's flash does
+  auto devices = client().list_devices();
+  ASSERT_TRUE(devices) << devices.error().message;
+  const DeviceInfo& piper = devices.value().at(0);
+  EXPECT_NEAR(piper.position_max[0], 1.0, 0.002);
+  EXPECT_NEAR(piper.velocity_max[0], 1.5, 0.002);
+  EXPECT_NEAR(piper.position_min[0], -2.618, 0.002) << "the configured limit, which the arm does not narrow";
+  EXPECT_NEAR(piper.position_max[1], 3.14, 0.002) << "a joint the arm does not narrow";
+  EXPECT_NE(robotd_->log().find("device 'piper': joint 'joint1' position_max_rad narrowed from 2.6179 to "),
+            std::string::npos)
+      << robotd_->log();
+}
+
 TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {
   start(/*with_sim_arm=*/false, nlohmann::json::object(), {std::string("LD_PRELOAD=") + ALLOC_COUNTER_LIBRARY});
   Session session = acquire(ControlMode::kMixed, {0, 1, 2, 3, 4, 5});
