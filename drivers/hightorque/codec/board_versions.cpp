@@ -42,9 +42,7 @@ std::size_t decode_board_versions(std::span<const std::uint8_t> payload, std::sp
 
 BoardFunction board_function_for(const FirmwareVersion& lowest) noexcept {
   const auto at_least = [&](int major, int minor, int patch) {
-    if (lowest.major != major) return lowest.major > major;
-    if (lowest.minor != minor) return lowest.minor > minor;
-    return lowest.patch >= patch;
+    return !lowest.older_than({.major = major, .minor = minor, .patch = patch});
   };
   if (at_least(4, 4, 6)) return BoardFunction::kV5;
   if (at_least(4, 2, 3)) return BoardFunction::kV4;

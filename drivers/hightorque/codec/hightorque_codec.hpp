@@ -25,6 +25,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <tuple>
 
 #include "robotd/result.hpp"
 #include "robotd/transport/can_message.hpp"
@@ -174,6 +175,10 @@ struct FirmwareVersion {
   int major = 0;
   int minor = 0;
   int patch = 0;
+  /// By major, minor, patch (the motor id does not count).
+  [[nodiscard]] constexpr bool older_than(const FirmwareVersion& other) const noexcept {
+    return std::tie(major, minor, patch) < std::tie(other.major, other.minor, other.patch);
+  }
 };
 struct ModelName {
   int motor = 0;

@@ -4,7 +4,8 @@
 #include <functional>
 #include <optional>
 #include <string>
-#include <tuple>
+
+#include "driver/version_text.hpp"
 
 namespace robotd::hightorque {
 namespace {
@@ -19,14 +20,6 @@ constexpr int kFdcanResets = 3;
 constexpr int kFdcanResetFrom = 41;    // board firmware 4.1, in tenths
 constexpr int kVersionQueryFrom = 40;  // board firmware 4.0 answers 0x0B and 0x06
 constexpr int kAnswerFrom = 20;        // the SDK waits for a board version of at least 2.0
-
-std::string text(const FirmwareVersion& v) {
-  return std::to_string(v.major) + "." + std::to_string(v.minor) + "." + std::to_string(v.patch);
-}
-
-bool older(const FirmwareVersion& a, const FirmwareVersion& b) {
-  return std::tie(a.major, a.minor, a.patch) < std::tie(b.major, b.minor, b.patch);
-}
 
 /// One port's packets during start-up: sends, and hands every packet received to a callback.
 class StartUpLink {
@@ -153,7 +146,7 @@ Result<BoardFunction> function_for(const transport::SerialPort& port, std::span<
   bool all_five = true;
   for (const int id : motor_ids) {
     const FirmwareVersion& version = setup.motor_firmware.at(static_cast<std::size_t>(id));
-    if (older(version, lowest)) lowest = version;
+    if (version.older_than(lowest)) lowest = version;
     any_five = any_five || version.major == 5;
     all_five = all_five && version.major == 5;
   }
@@ -166,7 +159,8 @@ Result<BoardFunction> function_for(const transport::SerialPort& port, std::span<
   if (function < BoardFunction::kV2) {
     return make_error(ErrorCode::kNotAvailable,
                       "board " + port.describe() + ": motor " + std::to_string(lowest.motor) + " has firmware " +
-                          text(lowest) + "; robotd needs 4.2.0 or later (the board answers state requests from it)");
+                          version_text(lowest) +
+                          "; robotd needs 4.2.0 or later (the board answers state requests from it)");
   }
   return function;
 }

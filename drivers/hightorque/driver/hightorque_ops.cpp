@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "driver/hightorque_driver.hpp"
+#include "driver/version_text.hpp"
 #include "robotd/driver/op_arguments.hpp"
 
 namespace robotd::hightorque {
@@ -30,10 +31,6 @@ int motor_of(const Reply& reply) {
       return reply.result.motor;
   }
   return 0;
-}
-
-std::string version_text(const FirmwareVersion& version) {
-  return std::to_string(version.major) + "." + std::to_string(version.minor) + "." + std::to_string(version.patch);
 }
 
 }  // namespace
