@@ -174,6 +174,9 @@ TEST_F(PiperTest, TheLimitsTheArmKeepsNarrowTheDevicesLimitsAtStart) {
   EXPECT_NE(robotd_->log().find("device 'piper': joint 'joint1' position_max_rad narrowed from 2.6179 to "),
             std::string::npos)
       << robotd_->log();
+  EXPECT_EQ(robotd_->log().find("joint 'joint2'"), std::string::npos)
+      << "joint2's stored limits are its configured ones, rounded to 0.1°: no narrowing\n"
+      << robotd_->log();
 }
 
 TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {

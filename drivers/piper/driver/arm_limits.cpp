@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "codec/wire_scaling.hpp"
 #include "driver/piper_driver.hpp"
 #include "robotd/driver/monotonic_clock.hpp"
 
@@ -12,8 +13,12 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// `config` narrowed by `arm`; appends what changed to `note` ("joint1 max 2.618→1.000 rad").
-driver::JointLimits narrowed(const driver::JointLimits& config, const JointLimitReply& arm, std::string& note) {
+/// `config` narrowed by `arm`; appends what changed to `note` ("joint1 max 2.618→1.000 rad"). A
+/// value tighter by less than one count of its field is the wire's rounding of the same limit
+/// (3.14 rad is stored as 1799 × 0.1° = 3.13985 rad), not a narrower one.
+driver::JointLimits narrowed(const driver::JointLimits& config, const JointLimitReply& arm, double speed_unit_rad_s,
+                             std::string& note) {
+  constexpr double kAngleCountRad = 1.0 / wire::kDeciDegPerRad;
   driver::JointLimits limits = config;
   std::array<char, 96> text{};
   const auto tell = [&](const char* what, double from, double to, const char* unit) {
@@ -21,16 +26,16 @@ driver::JointLimits narrowed(const driver::JointLimits& config, const JointLimit
                   from, to, unit);
     note += text.data();
   };
-  if (arm.min_angle_rad > limits.position_min_rad) {
+  if (arm.min_angle_rad > limits.position_min_rad + kAngleCountRad) {
     tell("min", limits.position_min_rad, arm.min_angle_rad, "rad");
     limits.position_min_rad = arm.min_angle_rad;
   }
-  if (arm.max_angle_rad < limits.position_max_rad) {
+  if (arm.max_angle_rad < limits.position_max_rad - kAngleCountRad) {
     tell("max", limits.position_max_rad, arm.max_angle_rad, "rad");
     limits.position_max_rad = arm.max_angle_rad;
   }
   // A speed of 0 is "not set" on arms that never stored one; it would stop the joint.
-  if (arm.max_speed_rad_s > 0 && arm.max_speed_rad_s < limits.velocity_max_rad_s) {
+  if (arm.max_speed_rad_s > 0 && arm.max_speed_rad_s < limits.velocity_max_rad_s - speed_unit_rad_s) {
     tell("speed", limits.velocity_max_rad_s, arm.max_speed_rad_s, "rad/s");
     limits.velocity_max_rad_s = arm.max_speed_rad_s;
   }
@@ -61,7 +66,7 @@ void PiperDriver::read_arm_limits() {
       if (reply == nullptr || reply->joint < 1 || reply->joint > kArmJoints || answered[reply->joint - 1U]) continue;
       answered[reply->joint - 1U] = true;
       PiperJointParams& joint = params_.joints[reply->joint - 1U];
-      joint.limits = narrowed(configured_limits_[reply->joint - 1U], *reply, narrowing);
+      joint.limits = narrowed(configured_limits_[reply->joint - 1U], *reply, codec_.max_speed_unit_rad_s, narrowing);
       if (joint.limits.position_min_rad >= joint.limits.position_max_rad) {
         joint.limits = configured_limits_[reply->joint - 1U];  // disjoint ranges: the arm's answer is unusable
         narrowing += (narrowing.empty() ? "" : ", ") + joint.name + " ignored (no overlap with the config)";
