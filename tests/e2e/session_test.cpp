@@ -103,8 +103,9 @@ TEST_F(SessionTest, OverlapRefusedNamingHolderDisjointGranted) {
   EXPECT_TRUE(available.value().motor_ids.empty());
 }
 
-// Issue test 3: a client killed mid-stream; its session ends after timeout_ms and the
-// motors are in the requested fallback. Prints how long it took.
+// Issue test 3: a client killed mid-stream while holding the arm against a 2 N·m load on joint2;
+// its session ends after timeout_ms and the motors are in the requested fallback. Prints how long
+// it took.
 void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::string& behavior_name) {
   constexpr int kTimeoutMs = 300;
   ChildProcess streamer(COMMAND_STREAMER, {"--domain", std::to_string(domain_.id()), "--timeout-ms",
@@ -118,6 +119,11 @@ void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::strin
   ASSERT_TRUE(streaming);
   ASSERT_EQ(streaming.value().sessions.size(), 1U)
       << "the streamer's commands did not keep session " << session << " alive for its " << kTimeoutMs << " ms timeout";
+  // The load comes once the streamer holds the arm: loaded from the start, an unowned joint2 would
+  // fall to its hard stop before a slow (sanitized) streamer took it, and a joint resting on its
+  // stop shows no fallback at all.
+  call_device("arm", "set_external_torque", {{"joint", 1}, {"torque_nm", -2.0}});
+  std::this_thread::sleep_for(100ms);
 
   const auto killed_at = std::chrono::steady_clock::now();
   streamer.kill_hard();
@@ -149,7 +155,7 @@ void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::strin
 }
 
 TEST_F(SessionTest, KilledClientDampingFallbackDampsTheLoadedJoint) {
-  start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
+  start_robotd();
   expect_fallback_after_kill(Behavior::kDamping, "DAMPING");
   // Damped, joint2 sinks under its 2 N·m load at about 2 / (kd 10 + friction 0.3) ≈ 0.19 rad/s.
   std::this_thread::sleep_for(200ms);
@@ -159,7 +165,7 @@ TEST_F(SessionTest, KilledClientDampingFallbackDampsTheLoadedJoint) {
 }
 
 TEST_F(SessionTest, KilledClientZeroTorqueFallbackLetsTheLoadedJointFall) {
-  start_robotd(sim_arm_config(domain_.id(), sim_arm_params(-2.0)));
+  start_robotd();
   expect_fallback_after_kill(Behavior::kZeroTorque, "ZERO_TORQUE");
   // Let go, joint2 falls freely (only friction 0.3 resists) until its hard stop at -2.5 rad.
   EXPECT_TRUE(wait_for_joints([](const JointState& s) { return s.position[1] < -2.4; }, 5s));
