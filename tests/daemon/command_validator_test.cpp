@@ -70,7 +70,7 @@ class CommandValidatorTest : public ::testing::Test {
   }
 
   Verdict check(const ControlCommand& c, ControlMode mode = ControlMode::kMixed) {
-    return validate_command(c, session(mode), model_, out_);
+    return validate_command(c, session(mode), model_, model_.limits, out_);
   }
 
   // The detail of a rejection for `reason`; fails the test if the verdict differs.
@@ -94,6 +94,17 @@ TEST_F(CommandValidatorTest, KeepaliveWithoutMotorsOrValuesIsAccepted) {
   expect_accepted(command({}));
   EXPECT_TRUE(out_.keepalive);
   EXPECT_EQ(out_.count, 0u);
+}
+
+TEST_F(CommandValidatorTest, PositionsAreCheckedAgainstTheLimitsNarrowedAtRunTimeNotTheModels) {
+  std::vector<driver::JointLimits> narrowed = model_.limits;
+  narrowed[0].position_max_rad = 0.25;
+  ControlCommand c = command({0});
+  c.positions = {0.5F};
+  const Verdict verdict = validate_command(c, session(ControlMode::kPosition), model_, narrowed, out_);
+  ASSERT_TRUE(verdict.rejection.has_value());
+  EXPECT_EQ(*verdict.rejection, Rejection::kOutOfRange);
+  EXPECT_THAT(verdict.detail, HasSubstr("outside -1..0.25"));
 }
 
 TEST_F(CommandValidatorTest, ValuesWithoutMotorIdsAreMalformed) {

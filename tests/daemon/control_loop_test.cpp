@@ -697,6 +697,65 @@ TEST_F(ControlLoopTest, AJointMeasuredBeyondItsLimitComesBackInsideUnderTheLimit
   EXPECT_DOUBLE_EQ(joint(0).position_rad, static_cast<double>(1.9F));
 }
 
+// What Device::narrow_limits hands the loop: joint 0's position range narrowed to `low`..`high`.
+void narrow_joint0(DeviceChannel& channel, const control::DeviceModel& model, double low, double high) {
+  LimitSet& limits = channel.limits.write_buffer();
+  for (std::size_t j = 0; j < model.joint_count(); ++j) limits.joints[j] = motion_limits(model.limits[j]);
+  limits.joints[0].position_min = low;
+  limits.joints[0].position_max = high;
+  channel.limits.publish();
+}
+
+TEST_F(ControlLoopTest, LimitsNarrowedAtRunTimeHoldFromTheNextTickAndStopAStreamInsideThem) {
+  start(0, 1, ControlMode::kPosition, {0});
+  tick();
+  send(0, 1, position_target(0, 1.9F));
+  run_ms(100);  // under way, at most 0.1 rad out
+  ASSERT_LT(joint(0).position_rad, 0.2);
+  narrow_joint0(*channel_, model_, -2.0, 0.5);
+  const std::size_t first = driver_.frames.size() - 1;
+  for (int i = 0; i < 3000; ++i) {
+    send(0, 1, position_target(0, 1.9F));  // the client keeps asking for the old range
+    tick();
+    follow_setpoint(0);
+  }
+  double previous = driver_.frames[first].joints[0].velocity_rad_s * kDt;
+  for (std::size_t f = first + 1; f < driver_.frames.size(); ++f) {
+    const double position = driver_.frames[f].joints[0].position_rad;
+    const double step = position - driver_.frames[f - 1].joints[0].position_rad;
+    ASSERT_LE(position, 0.5) << "frame " << f;
+    ASSERT_LE(std::fabs(step), 1.0 * kDt + 1e-12) << "frame " << f;
+    ASSERT_LE(std::fabs(step - previous), 10.0 * kDt * kDt + 1e-12) << "frame " << f;
+    previous = step;
+  }
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 0.5);
+}
+
+TEST_F(ControlLoopTest, AJointOutsideLimitsNarrowedAtRunTimeComesBackInsideUnderTheLimitsWithoutAStep) {
+  start(session_start(0, 1, ControlMode::kPosition, {0}, Behavior::kKeep, 60'000 * kMsNs));
+  tick();
+  send(0, 1, position_target(0, 1.5F));
+  for (int i = 0; i < 3000; ++i) {
+    tick();
+    follow_setpoint(0);
+  }
+  ASSERT_DOUBLE_EQ(joint(0).position_rad, static_cast<double>(1.5F));
+  narrow_joint0(*channel_, model_, -2.0, 1.0);  // the joint now stands 0.5 rad beyond its maximum
+  const std::size_t first = driver_.frames.size() - 1;
+  for (int i = 0; i < 3000; ++i) {
+    tick();
+    follow_setpoint(0);
+  }
+  double previous = 0;
+  for (const double step : setpoint_steps(0, first)) {
+    ASSERT_LE(step, 1e-12);                                           // never further out
+    ASSERT_LE(std::fabs(step), 1.0 * kDt + 1e-12);                    // velocity limit
+    ASSERT_LE(std::fabs(step - previous), 10.0 * kDt * kDt + 1e-12);  // acceleration limit
+    previous = step;
+  }
+  EXPECT_DOUBLE_EQ(joint(0).position_rad, 1.0);
+}
+
 TEST_F(ControlLoopTest, MixedSessionsKeepFallbackDropsTheClientsTorqueAndGains) {
   start(session_start(0, 1, ControlMode::kMixed, {1}, Behavior::kKeep, 20 * kMsNs));
   tick();

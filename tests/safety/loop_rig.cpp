@@ -302,7 +302,7 @@ class LoopRig {
       return;
     }
     const control::SessionView view{model_.name, record->mode, record->motors};
-    const control::Verdict verdict = control::validate_command(command, view, model_, validated_);
+    const control::Verdict verdict = control::validate_command(command, view, model_, model_.limits, validated_);
     if (verdict.rejection) {
       ++rejected_;
       return;

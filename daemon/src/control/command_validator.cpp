@@ -67,7 +67,7 @@ const char* to_string(Rejection rejection) {
 }
 
 Verdict validate_command(const ControlCommand& command, const SessionView& session, const DeviceModel& model,
-                         ValidatedCommand& out) {
+                         std::span<const driver::JointLimits> joint_limits, ValidatedCommand& out) {
   out = ValidatedCommand{};
   if (!command.device.empty() && command.device != session.device) {
     return reject(Rejection::kWrongDevice, "command names device '" + command.device +
@@ -139,7 +139,7 @@ Verdict validate_command(const ControlCommand& command, const SessionView& sessi
 
   for (std::size_t i = 0; i < count; ++i) {
     const auto joint = static_cast<std::size_t>(command.motor_ids[i]);
-    const driver::JointLimits& limits = model.limits[joint];
+    const driver::JointLimits& limits = joint_limits[joint];
     JointTargetUpdate& update = out.joints[i];
     update.joint = static_cast<std::uint8_t>(joint);
     const auto out_of_range = [&](const char* field, float value, double low, double high) {

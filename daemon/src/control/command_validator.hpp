@@ -70,8 +70,9 @@ struct Verdict {
   std::string detail;                  // why, for the log
 };
 
-/// Checks `command` for `session` on `model`; on acceptance fills `out`.
+/// Checks `command` for `session` on `model`, whose limits now are `limits` (one per joint:
+/// the model's, narrowed at run time); on acceptance fills `out`.
 Verdict validate_command(const ControlCommand& command, const SessionView& session, const DeviceModel& model,
-                         ValidatedCommand& out);
+                         std::span<const driver::JointLimits> limits, ValidatedCommand& out);
 
 }  // namespace robotd::control

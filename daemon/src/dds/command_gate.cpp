@@ -85,7 +85,8 @@ const control::ValidatedCommand* CommandGate::handle(const ControlCommand& comma
   }
 
   const control::SessionView view{device.model().name, session->mode, session->motors};
-  const control::Verdict verdict = control::validate_command(command, view, device.model(), validated_);
+  const auto limits = device.limits();
+  const control::Verdict verdict = control::validate_command(command, view, device.model(), *limits, validated_);
   if (verdict.rejection) {
     reject(device_index, *verdict.rejection, [&] { return app::log_text(verdict.detail) + sender(); });
     return nullptr;

@@ -39,11 +39,7 @@ ControlLoop::ControlLoop(driver::Driver& driver, const control::DeviceModel& mod
       joint_count_(model.joint_count()),
       period_ns_(static_cast<std::int64_t>(std::llround(1e9 / settings.rate_hz))),
       dt_s_(1.0 / settings.rate_hz) {
-  for (std::size_t j = 0; j < joint_count_; ++j) {
-    const auto& limits = model.limits[j];
-    motion_limits_[j] = control::MotionLimits{limits.position_min_rad, limits.position_max_rad,
-                                              limits.velocity_max_rad_s, limits.acceleration_max_rad_s2};
-  }
+  for (std::size_t j = 0; j < joint_count_; ++j) motion_limits_[j] = motion_limits(model.limits[j]);
   frame_.joint_count = joint_count_;
 }
 
@@ -74,6 +70,7 @@ void ControlLoop::run() noexcept {
 void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   ++tick_count_;
   newest_sent_ns_ = 0;
+  take_limits();
   handle_maintenance(now_ns);
   if (!in_maintenance_) read_feedback(now_ns);
   // Session starts and ends after the read, so a fallback begins from this tick's measurement.
@@ -98,6 +95,14 @@ void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   publish(now_ns, wake_latency);
   record_black_box(now_ns, wake_latency);
   channel_.ticks.store(tick_count_, std::memory_order_release);
+}
+
+// Limits narrowed at run time (Device::narrow_limits) hold from this tick on. A setpoint now
+// outside them comes back inside under the velocity and acceleration limits (joint_limiter).
+void ControlLoop::take_limits() noexcept {
+  const LimitSet* fresh = channel_.limits.take();
+  if (fresh == nullptr) return;
+  std::copy_n(fresh->joints.begin(), joint_count_, motion_limits_.begin());
 }
 
 // --- sessions -------------------------------------------------------------------------------

@@ -1,5 +1,5 @@
 // One device's real-time loop. Each tick (docs/design.md "One tick"):
-//   maintenance handshake → driver.read → control events → e-stop / shutdown → newest
+//   narrowed limits → maintenance handshake → driver.read → control events → e-stop / shutdown → newest
 //   targets → session timeouts → safe state / limits / rate limiting → driver.write →
 //   state, timing and black box out.
 // The safety invariants it keeps on every tick are listed in docs/safety.md.
@@ -66,6 +66,7 @@ class ControlLoop {
     std::array<float, kMaxJoints> default_kd{};
   };
 
+  void take_limits() noexcept;
   void drain_control_events(std::int64_t now_ns) noexcept;
   void handle_maintenance(std::int64_t now_ns) noexcept;
   void read_feedback(std::int64_t now_ns) noexcept;

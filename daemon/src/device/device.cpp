@@ -5,6 +5,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "control/limit_narrowing.hpp"
 #include "rt/monotonic_clock.hpp"
 
 namespace robotd::device {
@@ -25,35 +26,6 @@ Result<void> narrow(double& limit, const std::optional<double>& requested, bool 
   }
   limit = *requested;
   return {};
-}
-
-// What a driver describes once connected (limits it read from the device) may narrow the
-// model's limits, never widen them; each narrowing is logged.
-void narrow_to_connected(control::DeviceModel& model, const driver::DeviceDescription& connected) {
-  const std::size_t count = std::min(model.limits.size(), connected.joints.size());
-  for (std::size_t j = 0; j < count; ++j) {
-    driver::JointLimits& limits = model.limits[j];
-    const driver::JointLimits& device = connected.joints[j].limits;
-    const auto tighten = [&](double& limit, double value, bool upper, const char* key) {
-      if (upper ? value >= limit : value <= limit) return;
-      spdlog::warn("device '{}': joint '{}' {} narrowed from {} to {} by the limits the device reports", model.name,
-                   model.joint_names[j], key, limit, value);
-      limit = value;
-    };
-    const double min_before = limits.position_min_rad;
-    const double max_before = limits.position_max_rad;
-    tighten(limits.position_min_rad, device.position_min_rad, false, "position_min_rad");
-    tighten(limits.position_max_rad, device.position_max_rad, true, "position_max_rad");
-    if (limits.position_min_rad >= limits.position_max_rad) {
-      spdlog::warn("device '{}': joint '{}': the device's position range does not overlap the config's; keeping {}…{}",
-                   model.name, model.joint_names[j], min_before, max_before);
-      limits.position_min_rad = min_before;
-      limits.position_max_rad = max_before;
-    }
-    tighten(limits.velocity_max_rad_s, device.velocity_max_rad_s, true, "velocity_max_rad_s");
-    tighten(limits.acceleration_max_rad_s2, device.acceleration_max_rad_s2, true, "acceleration_max_rad_s2");
-    tighten(limits.effort_max_nm, device.effort_max_nm, true, "effort_max_nm");
-  }
 }
 
 }  // namespace
@@ -117,6 +89,8 @@ Result<void> Device::configure() {
       return invalid(o.path + ": position_min_rad must be below position_max_rad");
     }
   }
+  const std::lock_guard lock(limits_mutex_);
+  limits_ = std::make_shared<const std::vector<driver::JointLimits>>(model_.limits);
   return {};
 }
 
@@ -132,7 +106,7 @@ Result<void> Device::start(LoopRunner runner) {
     spdlog::warn("device '{}' ({}): not reachable yet: {}; starting it as a lost link and retrying every {} ms",
                  config_.name, config_.driver, connected.error().message, config_.reconnect_interval_ms);
   }
-  narrow_to_connected(model_, plugin_->driver().describe());
+  narrow_to_described();
   connected_ = true;  // from here on the driver is ours to disconnect, whether or not it is connected now
 
   LoopSettings settings;
@@ -188,6 +162,7 @@ Result<void> Device::run_maintenance(const std::function<Result<void>(driver::Dr
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   Result<void> result = work(plugin_->driver());
+  if (result) narrow_to_described();  // a reconnect may have read narrower limits from the device
   // The loop asks the driver to abort maintenance while an e-stop or a shutdown waits.
   const bool preempted =
       channel_->estop.load(std::memory_order_acquire) || channel_->shutdown_requested.load(std::memory_order_acquire);
@@ -198,6 +173,42 @@ Result<void> Device::run_maintenance(const std::function<Result<void>(driver::Dr
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return result;
+}
+
+std::shared_ptr<const std::vector<driver::JointLimits>> Device::limits() const {
+  const std::lock_guard lock(limits_mutex_);
+  return limits_;
+}
+
+Result<void> Device::narrow_limits(std::span<const driver::JointLimits> reported, std::string_view source) {
+  const std::lock_guard lock(limits_mutex_);
+  std::vector<driver::JointLimits> next = *limits_;
+  auto changes = control::narrow_limits(next, reported, model_.joint_names);
+  if (!changes) {
+    return make_error(changes.error().code, "device '" + config_.name + "': " + changes.error().message);
+  }
+  if (changes.value().empty()) return {};
+  for (const control::LimitChange& change : changes.value()) {
+    spdlog::warn("device '{}': joint '{}' {} narrowed from {} to {} by {}", model_.name,
+                 model_.joint_names[change.joint], change.key, change.from, change.to, source);
+  }
+  limits_ = std::make_shared<const std::vector<driver::JointLimits>>(std::move(next));
+  publish_limits_locked();
+  return {};
+}
+
+void Device::narrow_to_described() {
+  std::vector<driver::JointLimits> reported;
+  for (const auto& joint : plugin_->driver().describe().joints) reported.push_back(joint.limits);
+  if (auto narrowed = narrow_limits(reported, "the limits the device reports"); !narrowed) {
+    spdlog::warn("{}", narrowed.error().message);
+  }
+}
+
+void Device::publish_limits_locked() {
+  LimitSet& out = channel_->limits.write_buffer();
+  for (std::size_t j = 0; j < limits_->size(); ++j) out.joints[j] = motion_limits((*limits_)[j]);
+  channel_->limits.publish();
 }
 
 std::string Device::preempted_by() const {

@@ -6,7 +6,10 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <span>
+#include <string_view>
 #include <thread>
+#include <vector>
 
 #include "config/config.hpp"
 #include "control/device_model.hpp"
@@ -43,10 +46,22 @@ class Device {
 
   /// Pauses the loop's driver I/O, runs `work` on the calling thread, resumes. If `work`
   /// succeeds and `clears_fault`, a latched fault is cleared. Joints then hold where measured.
+  /// After a successful `work` (a reconnect, a recover) the limits the driver describes
+  /// narrow the device's (narrow_to_described).
   /// An e-stop or a shutdown pre-empts it: refused if one is pending, aborted (through the
   /// driver's abort_maintenance) if one comes while `work` runs.
   Result<void> run_maintenance(const std::function<Result<void>(driver::Driver&)>& work, bool clears_fault,
                                std::chrono::milliseconds timeout);
+
+  /// The device's limits now: the model's, narrowed by what the connected driver describes at
+  /// start, after every maintenance and after every device op. Any non-RT thread.
+  std::shared_ptr<const std::vector<driver::JointLimits>> limits() const;
+  /// Narrows the limits by `reported` (control::narrow_limits: never widens) and hands them to
+  /// the loop, which holds them from its next tick. Each change is logged, naming `source`.
+  /// Refused (nothing changes) if a joint would be left with no position range. Non-RT.
+  Result<void> narrow_limits(std::span<const driver::JointLimits> reported, std::string_view source);
+  /// narrow_limits by the limits the driver describes now; a refusal is logged. Non-RT.
+  void narrow_to_described();
 
   const config::DeviceConfig& config() const { return config_; }
   const control::DeviceModel& model() const { return model_; }
@@ -64,6 +79,7 @@ class Device {
 
  private:
   std::string preempted_by() const;
+  void publish_limits_locked();
 
   config::DeviceConfig config_;
   std::unique_ptr<plugin::LoadedDriver> plugin_;
@@ -74,6 +90,9 @@ class Device {
   LoopRunner runner_ = LoopRunner::kThread;
   rt::ThreadStart thread_start_;
   std::mutex maintenance_mutex_;
+  // Serialises the narrowings (the loop's limit buffer has one producer) and guards limits_.
+  mutable std::mutex limits_mutex_;
+  std::shared_ptr<const std::vector<driver::JointLimits>> limits_;
   mutable std::mutex note_mutex_;
   std::string estop_note_;
   bool connected_ = false;

@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "control/command_validator.hpp"
+#include "control/joint_limiter.hpp"
 #include "robotd/driver/spsc_ring.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/messages.hpp"
@@ -59,6 +60,18 @@ struct ControlEvent {
   std::array<float, kMaxJoints> default_kp{};  // per joint of the device; kNoGain = use the joint default
   std::array<float, kMaxJoints> default_kd{};
 };
+
+// --- Device (non-RT, its limits mutex held) → RT: the device's limits after a run-time narrowing.
+
+struct LimitSet {
+  std::array<control::MotionLimits, kMaxJoints> joints{};
+};
+
+/// What the loop's limiter needs of a joint's limits.
+inline control::MotionLimits motion_limits(const driver::JointLimits& limits) {
+  return control::MotionLimits{limits.position_min_rad, limits.position_max_rad, limits.velocity_max_rad_s,
+                               limits.acceleration_max_rad_s2};
+}
 
 // --- RT → publisher: what happened, for session bookkeeping and the log.
 
@@ -123,6 +136,7 @@ inline constexpr std::size_t kBlackBoxTicks = 512;
 
 struct DeviceChannel {
   rt::TripleBuffer<CommandSnapshot> commands;
+  rt::TripleBuffer<LimitSet> limits;  // taken at the start of a tick
   driver::SpscRing<ControlEvent, 64> control_events;
   std::mutex control_events_producers;  // non-RT producers only
 

@@ -73,7 +73,7 @@ ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*req
     info.rate_hz = model.rate_hz;
     info.native_rate_hz = model.native_rate_hz;
     info.joint_names = model.joint_names;
-    for (const auto& limits : model.limits) {
+    for (const auto& limits : *device->limits()) {
       info.position_min.push_back(limits.position_min_rad);
       info.position_max.push_back(limits.position_max_rad);
       info.velocity_max.push_back(limits.velocity_max_rad_s);
@@ -267,6 +267,7 @@ DeviceCallResponse DeviceServices::device_call(const DeviceCallRequest& request)
   const std::lock_guard lock(*call_mutexes_[index.value()]);
   auto result = device.driver().call(request.op, args);
   if (!result) return call_failed("'" + device.model().name + "' " + request.op + ": " + result.error().message);
+  device.narrow_to_described();  // an op may have narrowed the driver's limits (piper sdk_joint_limit)
   // A plugin's text that is not UTF-8 would make dump() throw and end robotd: replace it.
   return DeviceCallResponse{true, "ok", result.value().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)};
 }
