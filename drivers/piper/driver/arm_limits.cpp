@@ -45,7 +45,10 @@ driver::JointLimits narrowed(const driver::JointLimits& config, const JointLimit
 }  // namespace
 
 void PiperDriver::read_arm_limits() {
-  for (std::size_t j = 0; j < kArmJoints; ++j) params_.joints[j].limits = configured_limits_[j];
+  {
+    const std::lock_guard lock(limits_mutex_);
+    for (std::size_t j = 0; j < kArmJoints; ++j) params_.joints[j].limits = configured_limits_[j];
+  }
   arm_limits_note_.clear();
   replies_.clear();
   for (int j = 1; j <= kArmJoints; ++j) {
@@ -65,6 +68,7 @@ void PiperDriver::read_arm_limits() {
       const auto* reply = frame ? std::get_if<JointLimitReply>(&*frame) : nullptr;
       if (reply == nullptr || reply->joint < 1 || reply->joint > kArmJoints || answered[reply->joint - 1U]) continue;
       answered[reply->joint - 1U] = true;
+      const std::lock_guard lock(limits_mutex_);
       PiperJointParams& joint = params_.joints[reply->joint - 1U];
       joint.limits = narrowed(configured_limits_[reply->joint - 1U], *reply, codec_.max_speed_unit_rad_s, narrowing);
       if (joint.limits.position_min_rad >= joint.limits.position_max_rad) {

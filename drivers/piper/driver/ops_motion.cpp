@@ -161,11 +161,13 @@ Result<nlohmann::json> PiperOps::mode(const nlohmann::json& args) {
 Result<nlohmann::json> PiperOps::gripper(const nlohmann::json& args) {
   OpArguments arguments("gripper", args);
   JsonReader& reader = arguments.reader();
-  const PiperJointParams& limits = driver_.params_.gripper_joint;
+  const driver::JointLimits limits = [&] {  // narrowed at run time by sdk_gripper_range
+    const std::lock_guard lock(driver_.limits_mutex_);
+    return driver_.params_.gripper_joint.limits;
+  }();
   const ArmSnapshot snapshot = driver_.snapshot();
-  const double stroke =
-      reader.number_or("stroke_m", snapshot.arm.gripper.stroke_m,
-                       NumberRange{.min = limits.limits.position_min_rad, .max = limits.limits.position_max_rad});
+  const double stroke = reader.number_or("stroke_m", snapshot.arm.gripper.stroke_m,
+                                         NumberRange{.min = limits.position_min_rad, .max = limits.position_max_rad});
   const double effort =
       reader.number_or("effort_nm", driver_.params_.gripper_effort_nm, NumberRange{.min = 0, .max = 5});
   const bool enable = reader.boolean_or("enable", true);

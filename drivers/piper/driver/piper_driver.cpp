@@ -60,6 +60,7 @@ driver::DeviceDescription PiperDriver::describe() const {
   driver::DeviceDescription description;
   description.model = params_.model;
   description.native_rate_hz = params_.command_rate_hz;
+  const std::lock_guard lock(limits_mutex_);
   for (std::size_t j = 0; j < params_.joint_count(); ++j) {
     const PiperJointParams& joint = params_.joint(j);
     description.joints.push_back({joint.name, joint.limits, joint.default_kp, joint.default_kd});

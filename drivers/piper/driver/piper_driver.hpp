@@ -118,7 +118,11 @@ class PiperDriver final : public driver::Driver {
   CodecOptions codec_;  // params_.codec with the MIT layout detected at connect
   std::string firmware_text_;
   std::string firmware_note_;
-  std::array<driver::JointLimits, kArmJoints> configured_limits_{};  // before the arm narrowed them
+  // params_ joint and gripper limits and configured_limits_: connect/recover (the arm's limits)
+  // and the sdk_* ops write them, describe() and the gripper op read them. Never the RT thread.
+  mutable std::mutex limits_mutex_;
+  // The config's, narrowed by the sdk_joint_limit op: what the arm's limits narrow at a connect.
+  std::array<driver::JointLimits, kArmJoints> configured_limits_{};
   std::string arm_limits_note_;       // what the arm's own limits narrowed at the last connect
   std::array<char, 96> link_name_{};  // "stand-in /tmp/piper.sock", for RT messages
 

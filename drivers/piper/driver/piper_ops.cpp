@@ -14,7 +14,7 @@ struct OpSpec {
   bool needs_free_motors = false;
 };
 
-constexpr std::array<OpSpec, 28> kOps{{
+constexpr std::array<OpSpec, 30> kOps{{
     {"end_pose",
      R"({x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad, "motion": "p"|"l", "speed_percent": 1..100}: )"
      R"(move the flange to a pose with the arm's planner, MOVE P (joint space) or MOVE L (straight line))",
@@ -86,6 +86,12 @@ constexpr std::array<OpSpec, 28> kOps{{
      R"({"teaching_range_percent": 100..200, "max_range_mm": 0|70|100, )"
      R"("teaching_friction": 1..10}: GripperTeachingPendantParamConfig (0x47D))",
      driver::kNeedsFreeMotors},
+    {"sdk_joint_limit",
+     R"({"joint": "j1".."j6", "min_rad", "max_rad"}: SetSDKJointLimitParam: narrow a joint's position limits at )"
+     R"(run time (robotd holds them from the next tick; it never widens: a wider range is refused))"},
+    {"sdk_gripper_range",
+     R"({"min_m", "max_m"}: SetSDKGripperRangeParam: narrow the gripper's stroke range (m) at run time, for the )"
+     R"(gripper joint and the gripper op (never widens))"},
 }};
 
 std::string_view help_of(std::string_view op) {
@@ -119,6 +125,20 @@ std::optional<std::uint8_t> OpArguments::joint(bool allow_all) {
   const auto number = reader().integer("joint", 1, kArmJoints);
   if (!number) return std::nullopt;
   return static_cast<std::uint8_t>(*number);
+}
+
+std::optional<std::uint8_t> OpArguments::sdk_joint() {
+  reader().require("joint", R"("j1" … "j6" (or 1 … 6))");
+  const auto given = reader().raw("joint");
+  if (!given) return std::nullopt;
+  if (!given->is_string()) {
+    const auto number = reader().integer("joint", 1, kArmJoints);
+    if (!number) return std::nullopt;
+    return static_cast<std::uint8_t>(*number);
+  }
+  const auto name = reader().string("joint", {"j1", "j2", "j3", "j4", "j5", "j6"});
+  if (!name) return std::nullopt;
+  return static_cast<std::uint8_t>(name->back() - '0');
 }
 
 std::optional<CartesianPose> OpArguments::pose(JsonReader& reader) {
@@ -167,6 +187,8 @@ Result<nlohmann::json> PiperOps::call(const std::string& op, const nlohmann::jso
     if (op == "set_end_limits") return set_end_limits(args);
     if (op == "set_crash_protection") return set_crash_protection(args);
     if (op == "set_gripper_params") return set_gripper_params(args);
+    if (op == "sdk_joint_limit") return sdk_joint_limit(args);
+    if (op == "sdk_gripper_range") return sdk_gripper_range(args);
   } catch (const std::exception& e) {
     return make_error(ErrorCode::kInvalidArgument, op + ": " + e.what());
   }

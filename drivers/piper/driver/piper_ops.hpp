@@ -26,6 +26,8 @@ class OpArguments : public driver::OpArguments {
   OpArguments(std::string_view op, const nlohmann::json& args);
   /// "joint": 1 … 6, or "all" when `allow_all` (then kAllJoints).
   std::optional<std::uint8_t> joint(bool allow_all);
+  /// "joint": "j1" … "j6" (the SDK's joint_name) or 1 … 6.
+  std::optional<std::uint8_t> sdk_joint();
   /// A pose object {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad} under `reader`.
   static std::optional<CartesianPose> pose(JsonReader& reader);
 };
@@ -77,6 +79,10 @@ class PiperOps {
   Result<nlohmann::json> set_end_limits(const nlohmann::json& args);
   Result<nlohmann::json> set_crash_protection(const nlohmann::json& args);
   Result<nlohmann::json> set_gripper_params(const nlohmann::json& args);
+
+  // The SDK's software limits, narrowing the described limits at run time (ops_sdk_limits.cpp).
+  Result<nlohmann::json> sdk_joint_limit(const nlohmann::json& args);
+  Result<nlohmann::json> sdk_gripper_range(const nlohmann::json& args);
 
   PiperDriver& driver_;
 };

@@ -416,6 +416,52 @@ TEST_F(PiperDriverTest, TheArmsNarrowerLimitsNarrowTheConfigAtConnect) {
   narrow_config.disconnect();
 }
 
+// SetSDKJointLimitParam and SetSDKGripperRangeParam as ops: they narrow the limits the driver
+// describes (robotd takes them after the op), never widen them, keep a joint's narrowing
+// across a reconnect, and the gripper op is range-checked against the narrowed stroke.
+TEST_F(PiperDriverTest, SdkLimitOpsNarrowTheDescribedLimitsAtRunTimeAndNeverWidenThem) {
+  ASSERT_TRUE(driver_.connect());
+  {
+    DriverLoop loop(driver_, kDeviceJoints);
+    const auto narrowed = driver_.call("sdk_joint_limit", {{"joint", "j1"}, {"min_rad", -1.0}, {"max_rad", 0.5}});
+    ASSERT_TRUE(narrowed) << narrowed.error().message;
+    EXPECT_EQ(narrowed.value()["joint"], "joint1");
+    driver::DeviceDescription description = driver_.describe();
+    EXPECT_DOUBLE_EQ(description.joints[0].limits.position_min_rad, -1.0);
+    EXPECT_DOUBLE_EQ(description.joints[0].limits.position_max_rad, 0.5);
+    EXPECT_NEAR(description.joints[1].limits.position_max_rad, 3.14, 1e-9) << "other joints keep theirs";
+
+    const auto widened = driver_.call("sdk_joint_limit", {{"joint", "j1"}, {"min_rad", -1.0}, {"max_rad", 1.0}});
+    ASSERT_FALSE(widened);
+    EXPECT_NE(widened.error().message.find("robotd only narrows limits at run time"), std::string::npos)
+        << widened.error().message;
+    EXPECT_NE(widened.error().message.find("restart robotd"), std::string::npos) << widened.error().message;
+    const auto empty = driver_.call("sdk_joint_limit", {{"joint", 2}, {"min_rad", 1.0}, {"max_rad", 1.0}});
+    ASSERT_FALSE(empty);
+    EXPECT_NE(empty.error().message.find("must be below max"), std::string::npos) << empty.error().message;
+    const auto bad_joint = driver_.call("sdk_joint_limit", {{"joint", "j7"}, {"min_rad", 0}, {"max_rad", 1}});
+    ASSERT_FALSE(bad_joint);
+    EXPECT_NE(bad_joint.error().message.find("j6"), std::string::npos) << bad_joint.error().message;
+    description = driver_.describe();
+    EXPECT_DOUBLE_EQ(description.joints[0].limits.position_max_rad, 0.5) << "a refusal changes nothing";
+
+    const auto gripper = driver_.call("sdk_gripper_range", {{"min_m", 0.0}, {"max_m", 0.04}});
+    ASSERT_TRUE(gripper) << gripper.error().message;
+    EXPECT_DOUBLE_EQ(driver_.describe().joints[6].limits.position_max_rad, 0.04);
+    const auto wider_gripper = driver_.call("sdk_gripper_range", {{"min_m", 0.0}, {"max_m", 0.07}});
+    ASSERT_FALSE(wider_gripper);
+    EXPECT_NE(wider_gripper.error().message.find("robotd only narrows"), std::string::npos);
+    const auto beyond = driver_.call("gripper", {{"stroke_m", 0.05}});
+    ASSERT_FALSE(beyond) << "the gripper op is held to the narrowed stroke";
+    EXPECT_NE(beyond.error().message.find("0.04"), std::string::npos) << beyond.error().message;
+  }
+  driver_.disconnect();
+  ASSERT_TRUE(driver_.connect());  // the arm's limits are read again: the narrowing stays
+  EXPECT_DOUBLE_EQ(driver_.describe().joints[0].limits.position_max_rad, 0.5);
+  EXPECT_DOUBLE_EQ(driver_.describe().joints[0].limits.position_min_rad, -1.0);
+  driver_.disconnect();
+}
+
 TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   ASSERT_TRUE(driver_.connect());
   DriverLoop loop(driver_, kDeviceJoints);
