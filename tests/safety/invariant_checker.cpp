@@ -258,6 +258,16 @@ Violation InvariantChecker::violation(const TickObservation& tick, const char* i
 
 // --- the checks -----------------------------------------------------------------------------
 
+void InvariantChecker::on_limits_narrowed(std::span<const driver::JointLimits> limits) {
+  for (std::size_t j = 0; j < model_.joint_count(); ++j) {
+    if (limits[j].position_min_rad == model_.limits[j].position_min_rad &&
+        limits[j].position_max_rad == model_.limits[j].position_max_rad)
+      continue;
+    model_.limits[j] = limits[j];
+    joints_[j].narrowed = true;
+  }
+}
+
 std::optional<Violation> InvariantChecker::check(const TickObservation& tick) {
   // In the loop's order: measure, take the session events, the shutdown, lift a safe state
   // that has cleared, then time out silent sessions.
@@ -561,7 +571,15 @@ std::optional<Violation> InvariantChecker::check_setpoint(const TickObservation&
   };
 
   const bool started_here = !continuous || (reseed_allowed && (!smooth || from_measured));
-  if (started_here ? !from_measured : !smooth) {
+  // A narrowing can put a limit behind a setpoint moving outward, or within its braking
+  // distance: the setpoint then stops on the limit (or where it is, outside it) sooner than the
+  // acceleration limit would let it: a position limit comes first (docs/safety.md, I6).
+  const bool stops_on_narrowed_limit =
+      joint.narrowed && continuous && step * joint.previous_step >= 0 &&
+      std::fabs(step) <= std::fabs(joint.previous_step) &&
+      (step == 0 || p == limits.position_min_rad || p == limits.position_max_rad);
+  if (started_here || step == 0) joint.narrowed = false;
+  if (started_here ? !from_measured : !smooth && !stops_on_narrowed_limit) {
     return fail("I1 no jump", started_here ? "the setpoint does not start from the measured position"
                                            : "the setpoint moved faster than the velocity and acceleration limits");
   }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ class InvariantChecker {
   void on_estop(bool engaged);
   void on_maintenance_requested();
   void on_shutdown_requested();
+  /// The device's limits now (narrowed at run time); the loop holds them from the next tick.
+  void on_limits_narrowed(std::span<const driver::JointLimits> limits);
 
   /// Checks everything the loop did on one tick. Returns the first broken rule.
   std::optional<Violation> check(const TickObservation& tick);
@@ -104,6 +107,7 @@ class InvariantChecker {
     bool holding = false;    // braking to a stop, then still
     double hold_origin = 0;  // where the hold began
     double hold_reach = 0;   // how far from there braking may take it
+    bool narrowed = false;   // its position limits narrowed since the setpoint last was at rest
   };
 
   std::optional<Violation> check_state(const TickObservation& tick);

@@ -1,3 +1,4 @@
+#include "control/limit_narrowing.hpp"
 #include "loop_rig.hpp"
 
 #include <cmath>
@@ -168,6 +169,9 @@ class LoopRig {
       case Event::Kind::kTeleport:
         if (event.joint < spec_.joints) plant_.teleport(event.joint, event.value);
         return std::nullopt;
+      case Event::Kind::kNarrow:
+        if (event.joint < spec_.joints) narrow(event);
+        return std::nullopt;
       case Event::Kind::kRecover:
       case Event::Kind::kResetZero:
         maintain(event);
@@ -302,7 +306,7 @@ class LoopRig {
       return;
     }
     const control::SessionView view{model_.name, record->mode, record->motors};
-    const control::Verdict verdict = control::validate_command(command, view, model_, model_.limits, validated_);
+    const control::Verdict verdict = control::validate_command(command, view, model_, limits_, validated_);
     if (verdict.rejection) {
       ++rejected_;
       return;
@@ -322,9 +326,22 @@ class LoopRig {
     checker_.on_maintenance_requested();
   }
 
+  // Device::narrow_limits: the driver's new description narrows the limits, handed to the loop.
+  void narrow(const Event& event) {
+    plant_.narrow(event.joint, event.value);
+    std::vector<driver::JointLimits> reported;
+    for (const auto& joint : plant_.describe().joints) reported.push_back(joint.limits);
+    if (!control::narrow_limits(limits_, reported, model_.joint_names)) return;
+    device::LimitSet& out = channel_->limits.write_buffer();
+    for (std::size_t j = 0; j < limits_.size(); ++j) out.joints[j] = device::motion_limits(limits_[j]);
+    channel_->limits.publish();
+    checker_.on_limits_narrowed(limits_);
+  }
+
   std::FILE* trace_;
   DeviceSpec spec_;
   control::DeviceModel model_;
+  std::vector<driver::JointLimits> limits_ = model_.limits;  // the device's limits now
   PlantDriver plant_;
   std::unique_ptr<device::DeviceChannel> channel_ = std::make_unique<device::DeviceChannel>();
   session::SessionTable sessions_;

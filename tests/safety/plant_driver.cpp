@@ -1,6 +1,7 @@
 #include "plant_driver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace robotd::safety {
@@ -23,11 +24,22 @@ driver::DeviceDescription PlantDriver::describe() const {
   description.supports_torque = spec_.torque;
   description.supports_damping = spec_.damping;
   description.supports_zero_torque = spec_.zero_torque;
+  const std::lock_guard lock(mutex_);
   for (std::size_t j = 0; j < joint_count_; ++j) {
+    driver::JointLimits limits = model.limits[j];
+    if (described_range_[j] > 0) {
+      limits.position_min_rad = std::fmax(limits.position_min_rad, -described_range_[j]);
+      limits.position_max_rad = std::fmin(limits.position_max_rad, described_range_[j]);
+    }
     description.joints.push_back(
-        driver::JointDescription{model.joint_names[j], model.limits[j], model.default_kp[j], model.default_kd[j], 0.0});
+        driver::JointDescription{model.joint_names[j], limits, model.default_kp[j], model.default_kd[j], 0.0});
   }
   return description;
+}
+
+void PlantDriver::narrow(std::size_t joint, double range) {
+  const std::lock_guard lock(mutex_);
+  described_range_[joint] = described_range_[joint] > 0 ? std::fmin(described_range_[joint], range) : range;
 }
 
 void PlantDriver::next_maintenance(int ticks, bool fail) noexcept {

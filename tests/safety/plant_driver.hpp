@@ -55,6 +55,8 @@ class PlantDriver final : public driver::Driver {
   bool estop_input = false;
   std::array<std::array<bool, 3>, driver::kMaxJoints> non_finite{};  // [joint][FeedbackField]
   void teleport(std::size_t joint, double position) noexcept;
+  /// describe() reports `joint`'s position limits as ±`range` (within the spec's) from now on.
+  void narrow(std::size_t joint, double range);
 
   // What the loop did this tick.
   bool wrote = false;
@@ -80,7 +82,8 @@ class PlantDriver final : public driver::Driver {
   };
   DeviceSpec spec_;
   std::size_t joint_count_;
-  std::mutex mutex_;  // the ticks counted and the joints, shared with a maintenance thread
+  mutable std::mutex mutex_;  // the ticks counted, the joints and the described limits, shared with a
+                             // maintenance thread
   std::condition_variable ticked_;
   std::uint64_t ticks_ = 0;
   std::uint64_t until_ = 0;  // the tick a waiting maintenance ends at
@@ -88,6 +91,7 @@ class PlantDriver final : public driver::Driver {
   bool maintenance_fails_ = false;
   std::atomic<bool> in_work_{false};
   std::array<Joint, driver::kMaxJoints> joints_{};
+  std::array<double, driver::kMaxJoints> described_range_{};  // 0: the spec's limits
   driver::CommandFrame last_written_{};
   bool have_written_ = false;
 };

@@ -188,6 +188,10 @@ Event parse_event(const std::string& keyword, const Words& words) {
     event.kind = Event::Kind::kTeleport;
     event.joint = words.integer<std::size_t>("joint", 0);
     event.value = words.real("position", 0);
+  } else if (keyword == "narrow") {
+    event.kind = Event::Kind::kNarrow;
+    event.joint = words.integer<std::size_t>("joint", 0);
+    event.value = words.real("range", 1);
   } else if (keyword == "recover" || keyword == "reset_zero") {
     event.kind = keyword == "recover" ? Event::Kind::kRecover : Event::Kind::kResetZero;
     event.count = words.integer<int>("ticks", 1);
@@ -197,7 +201,7 @@ Event parse_event(const std::string& keyword, const Words& words) {
   } else {
     throw std::invalid_argument("unknown event '" + keyword +
                                 "' (expected tick, start, release, command, keepalive, estop, estop_input, fault, "
-                                "link, silence, nonfinite, teleport, recover, reset_zero, shutdown)");
+                                "link, silence, nonfinite, teleport, narrow, recover, reset_zero, shutdown)");
   }
   return event;
 }
@@ -268,6 +272,8 @@ std::string to_text(const Event& e) {
       return "nonfinite joint=" + std::to_string(e.joint) + " field=" + field_name(e.field) + (e.on ? " on" : " off");
     case Event::Kind::kTeleport:
       return "teleport joint=" + std::to_string(e.joint) + " position=" + number(e.value);
+    case Event::Kind::kNarrow:
+      return "narrow joint=" + std::to_string(e.joint) + " range=" + number(e.value);
     case Event::Kind::kRecover:
       return "recover ticks=" + std::to_string(e.count) + " fail=" + (e.fail ? "1" : "0");
     case Event::Kind::kResetZero:

@@ -58,6 +58,7 @@ struct Event {
     kSilence,     // the driver stops (on) or resumes delivering feedback
     kNonFinite,   // `joint` reports a non-finite `field` (on) or finite values again
     kTeleport,    // `joint` is measured at `value` from now on (pushed, zeroed, sagged)
+    kNarrow,      // `joint`'s position limits narrowed to ±`value` at run time (an op, a reconnect)
     kRecover,     // device_call recover: maintenance lasting `count` ticks, failing if `fail`
     kResetZero,   // reset_zero: maintenance lasting `count` ticks
     kShutdown,    // SIGTERM

@@ -208,6 +208,14 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
       moved.value = dice.real(spec.position_min - 1.0, spec.position_max + 1.0);
       push(moved);
     }
+    // The device's limits narrow while it runs (an op, a reconnect reading the arm's limits).
+    if (dice.chance(0.0002)) {
+      Event narrow;
+      narrow.kind = Event::Kind::kNarrow;
+      narrow.joint = static_cast<std::size_t>(dice.between(0, static_cast<int>(spec.joints) - 1));
+      narrow.value = dice.real(0.1, spec.position_max);
+      push(narrow);
+    }
     // Someone calls recover: mostly after something went wrong, now and then on a healthy device.
     if (dice.chance(faulty ? 0.02 : 0.0002)) {
       Event recover;

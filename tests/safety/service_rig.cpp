@@ -189,6 +189,14 @@ class ServiceRig {
       case Event::Kind::kTeleport:
         if (event.joint < spec_.joints) plant_->teleport(event.joint, event.value);
         return std::nullopt;
+      case Event::Kind::kNarrow:
+        // What robotd does after a device op (and after a reconnect): take what the driver describes.
+        if (event.joint < spec_.joints) {
+          plant_->narrow(event.joint, event.value);
+          device_->narrow_to_described();
+          checker_->on_limits_narrowed(*device_->limits());
+        }
+        return std::nullopt;
       case Event::Kind::kRecover:
       case Event::Kind::kResetZero:
         return maintain(event);
