@@ -1,5 +1,6 @@
 // The PiPER driver end to end: robotd loads the piper plugin, which talks CAN to
 // robotd-piper-sim over the stand-in bus; a client drives it through DDS.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -177,6 +178,96 @@ TEST_F(PiperTest, TheLimitsTheArmKeepsNarrowTheDevicesLimitsAtStart) {
   EXPECT_EQ(robotd_->log().find("joint 'joint2'"), std::string::npos)
       << "joint2's stored limits are its configured ones, rounded to 0.1°: no narrowing\n"
       << robotd_->log();
+}
+
+// robotctl devices --json, parsed: what a user sees of the devices' limits.
+nlohmann::json robotctl_devices(int domain) {
+  ChildProcess robotctl(ROBOTCTL_BINARY, {"--domain", std::to_string(domain), "devices", "--json"});
+  std::string printed;
+  while (auto line = robotctl.read_line(10s)) printed += *line + "\n";
+  return nlohmann::json::parse(printed, nullptr, /*allow_exceptions=*/false);
+}
+
+// SetSDKJointLimitParam at run time (the sdk_joint_limit op): a session streams joint1 towards
+// 2 rad; once its limit is narrowed to 0.6 rad the joint stops inside it, the device's limits
+// say so (list_devices, robotctl devices), and a command beyond it is refused.
+TEST_F(PiperTest, SdkJointLimitNarrowsARunningDeviceAndAStreamStopsInsideIt) {
+  start(/*with_sim_arm=*/false, nlohmann::json::object(), allocation_counter_environment());
+  if (kCountsAllocations) {  // the loop counts its allocations once warmed up: narrow after that
+    ASSERT_TRUE(wait_for_joints(
+        [&](const JointState& /*s*/) { return device_status("piper").loop.rt_heap_allocations >= 0; }, 10s, "piper"));
+  }
+  Session session = acquire(ControlMode::kPosition, {0});
+  ASSERT_TRUE(wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.send_positions({2.0F});
+        return s.position[0] > 0.2;
+      },
+      10s, "piper"));
+  const nlohmann::json narrowed = call("sdk_joint_limit", {{"joint", "j1"}, {"min_rad", -2.0}, {"max_rad", 0.6}});
+  EXPECT_EQ(narrowed["max_rad"], 0.6) << narrowed.dump();
+
+  // The stream keeps asking for 2 rad: refused now, and the joint comes to rest at the new limit.
+  double highest = 0;
+  wait_for_joints(
+      [&](const JointState& s) {
+        (void)session.send_positions({2.0F});
+        highest = std::max(highest, s.position[0]);
+        return false;
+      },
+      1500ms, "piper");
+  EXPECT_LE(highest, 0.6 + 0.01) << "the joint went beyond the narrowed limit";
+  EXPECT_TRUE(wait_for_joints([](const JointState& s) { return std::fabs(s.position[0] - 0.6) < 0.01; }, 10s, "piper"))
+      << joint_state("piper").position[0];
+  EXPECT_GT(device_status("piper").commands.rejected_out_of_range, 0U) << "commands beyond 0.6 rad are refused";
+
+  auto devices = client().list_devices();
+  ASSERT_TRUE(devices) << devices.error().message;
+  EXPECT_DOUBLE_EQ(devices.value().at(0).position_max[0], 0.6);
+  EXPECT_DOUBLE_EQ(devices.value().at(0).position_min[0], -2.0);
+  const nlohmann::json listed = robotctl_devices(domain_.id());
+  ASSERT_FALSE(listed.is_discarded()) << "robotctl devices --json printed no JSON";
+  ASSERT_TRUE(listed.is_array() && !listed.empty()) << listed.dump();
+  EXPECT_EQ(listed[0]["name"], "piper");
+  EXPECT_EQ(listed[0]["position_max"][0], 0.6) << listed.dump();
+  EXPECT_NE(robotd_->log().find("device 'piper': joint 'joint1' position_max_rad narrowed from 2.6179 to 0.6 by the "
+                                "limits the device reports"),
+            std::string::npos)
+      << robotd_->log();
+
+  const auto widened =
+      client().device_call("piper", "sdk_joint_limit", R"({"joint": "j1", "min_rad": -2.0, "max_rad": 1.0})");
+  ASSERT_FALSE(widened);
+  EXPECT_NE(widened.error().message.find("robotd only narrows limits at run time"), std::string::npos)
+      << widened.error().message;
+  EXPECT_DOUBLE_EQ(client().list_devices().value().at(0).position_max[0], 0.6) << "a refused widening changes nothing";
+  if (kCountsAllocations) {
+    EXPECT_EQ(device_status("piper").loop.rt_heap_allocations, 0) << "taking the narrowed limits allocated on the RT thread";
+  }
+}
+
+// A reconnect reads the arm's limits again (0x472 → 0x473): narrower ones it now keeps reach the
+// running device without a restart.
+TEST_F(PiperTest, NarrowerLimitsTheArmReportsAtAReconnectReachTheRunningDevice) {
+  start(/*with_sim_arm=*/false);
+  call("set_joint_limits", {{"joint", 1}, {"max_angle_rad", 1.0}});  // the arm's flash; read at a connect
+  EXPECT_NEAR(client().list_devices().value().at(0).position_max[0], 2.6179, 1e-9) << "not before a reconnect";
+  ASSERT_TRUE(sim_.control({{"op", "disconnect"}, {"ms", 300}})["ok"].get<bool>());
+  ASSERT_EQ(wait_for_state("piper", DeviceState::kFault).state, DeviceState::kFault);
+  ASSERT_EQ(wait_for_state("piper", DeviceState::kRunning, 10s).state, DeviceState::kRunning) << robotd_->log();
+  EXPECT_NEAR(client().list_devices().value().at(0).position_max[0], 1.0, 0.002);
+  EXPECT_NE(robotd_->log().find("device 'piper': joint 'joint1' position_max_rad narrowed from 2.6179 to "),
+            std::string::npos)
+      << robotd_->log();
+  Session session = acquire(ControlMode::kPosition, {0});
+  const std::uint64_t refused_before = device_status("piper").commands.rejected_out_of_range;
+  ASSERT_TRUE(session.send_positions({1.5F}));
+  EXPECT_TRUE(wait_for_joints(
+      [&](const JointState& /*s*/) {
+        return device_status("piper").commands.rejected_out_of_range > refused_before;
+      },
+      10s, "piper"))
+      << "a command beyond the arm's new limit was not refused";
 }
 
 TEST_F(PiperTest, MitStreamAt1kHzFor10Seconds) {
