@@ -7,6 +7,9 @@
 //     lock a mutex another thread holds, log, or block beyond a short bounded time.
 //   call, diagnostics — called from non-RT threads while the RT loop runs; the driver makes
 //     them safe against read/write (atomics, lock-free queues).
+//   describe — also after every successful recover/reset_zero and call(), on that non-RT
+//     thread while the RT loop runs: safe against the other methods. Narrower limits it then
+//     reports narrow the running device's (never wider: docs/safety.md).
 //   abort_maintenance — any thread, including the RT loop, at any time.
 // Errors cross this boundary as values; no exception may escape a driver method.
 #pragma once
