@@ -242,7 +242,8 @@ TEST_F(PiperTest, SdkJointLimitNarrowsARunningDeviceAndAStreamStopsInsideIt) {
       << widened.error().message;
   EXPECT_DOUBLE_EQ(client().list_devices().value().at(0).position_max[0], 0.6) << "a refused widening changes nothing";
   if (kCountsAllocations) {
-    EXPECT_EQ(device_status("piper").loop.rt_heap_allocations, 0) << "taking the narrowed limits allocated on the RT thread";
+    EXPECT_EQ(device_status("piper").loop.rt_heap_allocations, 0)
+        << "taking the narrowed limits allocated on the RT thread";
   }
 }
 
@@ -263,9 +264,7 @@ TEST_F(PiperTest, NarrowerLimitsTheArmReportsAtAReconnectReachTheRunningDevice) 
   const std::uint64_t refused_before = device_status("piper").commands.rejected_out_of_range;
   ASSERT_TRUE(session.send_positions({1.5F}));
   EXPECT_TRUE(wait_for_joints(
-      [&](const JointState& /*s*/) {
-        return device_status("piper").commands.rejected_out_of_range > refused_before;
-      },
+      [&](const JointState& /*s*/) { return device_status("piper").commands.rejected_out_of_range > refused_before; },
       10s, "piper"))
       << "a command beyond the arm's new limit was not refused";
 }

@@ -574,10 +574,9 @@ std::optional<Violation> InvariantChecker::check_setpoint(const TickObservation&
   // A narrowing can put a limit behind a setpoint moving outward, or within its braking
   // distance: the setpoint then stops on the limit (or where it is, outside it) sooner than the
   // acceleration limit would let it: a position limit comes first (docs/safety.md, I6).
-  const bool stops_on_narrowed_limit =
-      joint.narrowed && continuous && step * joint.previous_step >= 0 &&
-      std::fabs(step) <= std::fabs(joint.previous_step) &&
-      (step == 0 || p == limits.position_min_rad || p == limits.position_max_rad);
+  const bool stops_on_narrowed_limit = joint.narrowed && continuous && step * joint.previous_step >= 0 &&
+                                       std::fabs(step) <= std::fabs(joint.previous_step) &&
+                                       (step == 0 || p == limits.position_min_rad || p == limits.position_max_rad);
   if (started_here || step == 0) joint.narrowed = false;
   if (started_here ? !from_measured : !smooth && !stops_on_narrowed_limit) {
     return fail("I1 no jump", started_here ? "the setpoint does not start from the measured position"

@@ -1,9 +1,9 @@
-#include "control/limit_narrowing.hpp"
 #include "loop_rig.hpp"
 
 #include <cmath>
 
 #include "control/behavior_map.hpp"
+#include "control/limit_narrowing.hpp"
 #include "device/command_admission.hpp"
 #include "service/session_events.hpp"
 

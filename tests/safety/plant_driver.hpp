@@ -83,7 +83,7 @@ class PlantDriver final : public driver::Driver {
   DeviceSpec spec_;
   std::size_t joint_count_;
   mutable std::mutex mutex_;  // the ticks counted, the joints and the described limits, shared with a
-                             // maintenance thread
+                              // maintenance thread
   std::condition_variable ticked_;
   std::uint64_t ticks_ = 0;
   std::uint64_t until_ = 0;  // the tick a waiting maintenance ends at

@@ -69,7 +69,8 @@ Result<nlohmann::json> PiperOps::sdk_gripper_range(const nlohmann::json& args) {
   const auto max = reader.number("max_m");
   if (auto error = arguments.finish()) return *error;
   if (!driver_.params_.gripper) {
-    return make_error(ErrorCode::kRefused, "sdk_gripper_range: this device has no gripper joint (params.gripper is false)");
+    return make_error(ErrorCode::kRefused,
+                      "sdk_gripper_range: this device has no gripper joint (params.gripper is false)");
   }
   const std::lock_guard lock(driver_.limits_mutex_);
   PiperJointParams& gripper = driver_.params_.gripper_joint;
