@@ -21,11 +21,11 @@ driver::JointLimits joint(double low, double high, double velocity = 1.0) {
   return limits;
 }
 
-const std::vector<std::string> kNames{"j1", "j2"};
+std::vector<std::string> joint_names() { return {"j1", "j2"}; }
 
 TEST(LimitNarrowingTest, TighterValuesAreTakenAndListed) {
   std::vector<driver::JointLimits> limits{joint(-2, 2), joint(-1, 1)};
-  auto changes = narrow_limits(limits, std::vector{joint(-1.5, 2), joint(-1, 0.5, 0.4)}, kNames);
+  auto changes = narrow_limits(limits, std::vector{joint(-1.5, 2), joint(-1, 0.5, 0.4)}, joint_names());
   ASSERT_TRUE(changes) << changes.error().message;
   ASSERT_EQ(changes.value().size(), 3U);
   EXPECT_STREQ(changes.value()[0].key, "position_min_rad");
@@ -42,7 +42,7 @@ TEST(LimitNarrowingTest, WiderOrNonFiniteValuesNeverWidenALimit) {
   driver::JointLimits wide = joint(-3, 3, 2.0);
   wide.acceleration_max_rad_s2 = 100;
   driver::JointLimits nan = joint(std::nan(""), std::nan(""), std::nan(""));
-  auto changes = narrow_limits(limits, std::vector{wide, nan}, kNames);
+  auto changes = narrow_limits(limits, std::vector{wide, nan}, joint_names());
   ASSERT_TRUE(changes) << changes.error().message;
   EXPECT_TRUE(changes.value().empty());
   EXPECT_DOUBLE_EQ(limits[0].position_min_rad, -1);
@@ -54,7 +54,7 @@ TEST(LimitNarrowingTest, WiderOrNonFiniteValuesNeverWidenALimit) {
 
 TEST(LimitNarrowingTest, ANarrowingThatLeavesNoPositionRangeIsRefusedAndChangesNothing) {
   std::vector<driver::JointLimits> limits{joint(-2, 2), joint(-1, 1)};
-  auto changes = narrow_limits(limits, std::vector{joint(-1, 1), joint(1.5, 3)}, kNames);
+  auto changes = narrow_limits(limits, std::vector{joint(-1, 1), joint(1.5, 3)}, joint_names());
   ASSERT_FALSE(changes);
   EXPECT_THAT(changes.error().message, HasSubstr("joint 'j2'"));
   EXPECT_THAT(changes.error().message, HasSubstr("leaves no position range"));
