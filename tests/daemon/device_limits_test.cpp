@@ -69,6 +69,7 @@ class DeviceLimitsTest : public ::testing::Test {
 
   std::vector<driver::JointLimits> reported() const {
     std::vector<driver::JointLimits> limits;
+    limits.reserve(driver_->description.joints.size());
     for (const auto& joint : driver_->description.joints) limits.push_back(joint.limits);
     return limits;
   }
