@@ -50,7 +50,10 @@ Result<void> PiperDriver::await_arm_frames(std::chrono::milliseconds timeout) {
   while (std::chrono::steady_clock::now() < deadline) {
     drain_link_blocking_free(driver::monotonic_now_ns());
     if (arm_frames_complete()) return {};
-    if (!abort_.sleep_for(1ms)) return driver::aborted_error("waiting for the arm's frames");
+    if (!abort_.sleep_for(1ms)) {
+      return driver::aborted_error(params_.leader() ? "waiting for the leader's commands"
+                                                    : "waiting for the arm's feedback");
+    }
   }
   return make_error(ErrorCode::kNotAvailable,
                     missing_frames_text(std::to_string(timeout.count()) + " ms", rx_frames_ != frames_before));
