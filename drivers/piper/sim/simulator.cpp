@@ -1,7 +1,6 @@
 #include "simulator.hpp"
 
 #include <utility>
-#include <variant>
 
 #include <spdlog/spdlog.h>
 
@@ -103,14 +102,9 @@ void Simulator::poll_bus() {
     if (result == transport::CanIo::kBusError) continue;
     ++frames_received_[message.extended ? message.id | 0x80000000U : message.id];
     replies.clear();
-    if (leader_) {
-      // A leader is moved by hand and drives its follower: of the host's frames it keeps only
-      // 0x470 (its role for the next start) and answers nothing.
-      if (const auto frame = decode(message, codec_); frame && std::holds_alternative<MasterSlaveConfig>(*frame)) {
-        arm_.settings().master_slave = std::get<MasterSlaveConfig>(*frame);
-      }
-      continue;
-    }
+    // A leader is moved by hand and drives its follower: of the host's frames it takes only
+    // 0x470 (its role for the next start), which has no reply.
+    if (leader_ && (message.extended || message.id != can_id::kMasterSlaveConfig)) continue;
     const bool was_estopped = arm_.estop();
     controller_.handle(message, replies);
     if (arm_.estop() && !was_estopped) estop_since_ns_ = monotonic_ns();
