@@ -162,6 +162,20 @@ TEST_F(SessionTableTest, MixedModeIsRefusedOnAPositionOnlyDevice) {
               HasSubstr("supports only POSITION mode, not MIXED"));
 }
 
+// A device whose driver only reports (a leader arm moved by hand) is never granted, in any mode,
+// and the refusal carries the driver's reason; it lists no control modes.
+TEST_F(SessionTableTest, AReadOnlyDeviceIsRefusedWithTheDriversReason) {
+  control::DeviceModel leader = test::position_only_arm("leader", 6);
+  leader.read_only_reason = "a leader arm only reports what a person moves it to";
+  SessionTable table{{&leader}, SessionLimits{}};
+  for (const ControlMode mode : {ControlMode::kPosition, ControlMode::kTorque}) {
+    EXPECT_THAT(refusal(table, request("n", {}, mode)),
+                HasSubstr("device 'leader' (test) takes no commands: a leader arm only reports"));
+  }
+  EXPECT_THAT(leader.control_modes(), IsEmpty());
+  EXPECT_THAT(arm_.control_modes(), ElementsAre(ControlMode::kPosition));
+}
+
 TEST_F(SessionTableTest, TorqueAndMixedModesAreGrantedOnATorqueDevice) {
   RequestControlRequest torque = request("n", {0}, ControlMode::kTorque);
   torque.device = "legs";

@@ -32,6 +32,7 @@ struct DeviceModel {
   bool has_end_pose = false;
   LimitPolicy limit_policy = LimitPolicy::kReject;
   std::vector<driver::OpDescription> ops;
+  std::string read_only_reason;  // non-empty: no control modes; control requests are refused
 
   std::size_t joint_count() const { return joint_names.size(); }
   std::vector<ControlMode> control_modes() const;

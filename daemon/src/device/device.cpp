@@ -58,6 +58,7 @@ Result<void> Device::configure() {
   model_.has_end_pose = description.has_end_pose;
   model_.limit_policy = config_.limit_policy;
   model_.ops = description.ops;
+  model_.read_only_reason = description.read_only_reason;
   for (const auto& joint : description.joints) {
     model_.joint_names.push_back(joint.name);
     model_.limits.push_back(joint.limits);

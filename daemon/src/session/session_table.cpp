@@ -92,6 +92,9 @@ Result<void> SessionTable::check_request(const RequestControlRequest& request,
     return refused("default_behavior " + std::to_string(static_cast<int>(request.default_behavior)) +
                    " is not one of KEEP_MODE=0, DAMPING_MODE=1, ZERO_TORQUE_MODE=2");
   }
+  if (!model.read_only_reason.empty()) {
+    return refused("device '" + model.name + "' (" + model.driver + ") takes no commands: " + model.read_only_reason);
+  }
   if (request.control_mode != ControlMode::kPosition && !model.supports_torque) {
     return refused("device '" + model.name + "' (" + model.driver + ") supports only POSITION mode, not " +
                    std::string(to_string(request.control_mode)));

@@ -23,7 +23,6 @@ bool counts_within(double value, double unit, double highest) {
   const double n = counts(value, unit);
   return n >= 0 && n <= highest;  // false for NaN
 }
-bool id_offset_valid(std::uint8_t offset) { return offset == 0x00 || offset == 0x10 || offset == 0x20; }
 bool end_limit_valid(const std::optional<double>& value) {
   return !value || counts_within(*value, kEndLimitUnit, kMaxEndLimitCounts);
 }

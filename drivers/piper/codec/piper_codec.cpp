@@ -713,8 +713,12 @@ CanMessage encode(const GripperParamReply& frame, const CodecOptions& /*options*
   return encode_gripper_params(can_id::kGripperParamReply, frame);
 }
 
-std::optional<Frame> decode(const CanMessage& message, const CodecOptions& options) {
-  if (message.extended || message.fd || message.error_frame) return std::nullopt;
+std::optional<Frame> decode(const CanMessage& wire_message, const CodecOptions& options) {
+  if (wire_message.extended || wire_message.fd || wire_message.error_frame) return std::nullopt;
+  const std::optional<std::uint32_t> id = from_wire_id(wire_message.id, options);
+  if (!id) return std::nullopt;
+  CanMessage message = wire_message;  // the decoders read frame indices off the protocol id
+  message.id = *id;
   for (const FrameDecoder& decoder : kDecoders) {
     if (message.id < decoder.first_id || message.id > decoder.last_id) continue;
     if (message.length < decoder.length) return std::nullopt;

@@ -68,6 +68,9 @@ struct CodecOptions {
   double max_speed_unit_rad_s = 0.001;  // 0x473/0x474 max joint speed (SDK; pyAgxArm says 0.01)
   double max_acc_unit_rad_s2 = 0.01;    // 0x475/0x47C max joint acc (0x475 doc, pyAgxArm; SDK's 0x47C doc says 0.001)
   double motor_position_unit_rad = 0.001;  // 0x251–0x256 position (pyAgxArm; SDK doc says rad)
+  // Where MasterSlaveConfig (0x470) moved the ids (0x00, 0x10, 0x20; see id_offsets.cpp):
+  std::uint8_t feedback_id_offset = 0;  // 0x2A1–0x2A8 are at 0x2B1–0x2B8 / 0x2C1–0x2C8
+  std::uint8_t control_id_offset = 0;   // 0x150–0x15F are at 0x160–0x16F / 0x170–0x17F
 };
 
 // --- enumerations (wire values) ---------------------------------------------------------------
@@ -389,7 +392,8 @@ const char* refusal(const EndVelAccSet& frame, const CodecOptions& options = {})
 const char* refusal(const GripperParamSet& frame, const CodecOptions& options = {});
 
 /// The frame a message carries, or nullopt for an unknown id, an extended or FD or error frame,
-/// a payload shorter than the frame needs, or an MIT frame whose CRC does not match. Longer
+/// a payload shorter than the frame needs, or an MIT frame whose CRC does not match, or an id of
+/// a range moved to another offset than `options` say (from_wire_id). Longer
 /// payloads are read up to what the frame needs. Never throws, never allocates.
 std::optional<Frame> decode(const CanMessage& message, const CodecOptions& options = {});
 
@@ -398,6 +402,22 @@ std::optional<Frame> decode(const CanMessage& message, const CodecOptions& optio
 /// 361° (0x2A2–0x2A4), a joint beyond 3000° (|q| > 3 000 000 m°, 0x2A5–0x2A7), a gripper stroke
 /// beyond 150 mm (0x2A8). True for every other frame. No allocation.
 bool plausible(const Frame& frame) noexcept;
+
+// --- ids moved by MasterSlaveConfig offsets (id_offsets.cpp) ---------------------------------
+
+/// True for the id offsets 0x470 takes: 0x00, 0x10, 0x20.
+bool id_offset_valid(std::uint8_t offset) noexcept;
+/// `message` with the id it has on a bus whose ids were moved by `options`' offsets: a control id
+/// (0x150–0x15F) moved by control_id_offset, a feedback id (0x2A1–0x2A8) by feedback_id_offset.
+/// Every frame goes through this on its way to the bus; decode() undoes it.
+CanMessage to_wire(CanMessage message, const CodecOptions& options) noexcept;
+/// The protocol id of a received id, or nullopt for an id of a moved range at another offset
+/// (another arm's frame on a shared bus, or one whose offsets robotd was not told).
+std::optional<std::uint32_t> from_wire_id(std::uint32_t wire_id, const CodecOptions& options) noexcept;
+/// The offset that would make `wire_id` one of the arm's feedback (0x2A1–0x2A8) / control
+/// (0x150–0x15F) ids, or nullopt: for naming the offset a silent-looking arm uses.
+std::optional<std::uint8_t> feedback_offset_of(std::uint32_t wire_id) noexcept;
+std::optional<std::uint8_t> control_offset_of(std::uint32_t wire_id) noexcept;
 
 /// The firmware request (0x4AF `01 00 00 00 00 00 00 00`), which decodes as a FirmwareChunk too.
 CanMessage firmware_request();

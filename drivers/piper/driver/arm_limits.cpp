@@ -52,8 +52,7 @@ void PiperDriver::read_arm_limits() {
   arm_limits_note_.clear();
   replies_.clear();
   for (int j = 1; j <= kArmJoints; ++j) {
-    if (transport_->send(encode(JointLimitQuery{.joint = static_cast<std::uint8_t>(j)}, codec_)) !=
-        transport::CanIo::kDone) {
+    if (send(encode(JointLimitQuery{.joint = static_cast<std::uint8_t>(j)}, codec_)) != transport::CanIo::kDone) {
       arm_limits_note_ = "could not send the joint limit query (0x472): the configured limits apply";
       return;
     }

@@ -112,9 +112,18 @@ bool apply_frame(ArmState& state, const Frame& frame, std::int64_t now_ns) noexc
           state.master_joints_rad[first] = value.first_rad;
           state.master_joints_rad[first + 1] = value.second_rad;
           state.master_seen = true;
+          state.master_pairs_seen |= static_cast<std::uint8_t>(1U << static_cast<unsigned>(value.pair));
+          state.last_master_joints_ns = now_ns;
+          // Complete as the arm's own joint feedback is: when the last of the three arrives.
+          if (value.pair == 2 && (state.master_pairs_seen == kAllPairs || state.master_joints_seen)) {
+            state.master_joints_seen = true;
+            state.master_pairs_seen = 0;
+            ++state.master_joint_sets;
+          }
         } else if constexpr (std::is_same_v<T, GripperControl>) {
           state.master_gripper = value;
           state.master_seen = true;
+          state.master_gripper_seen = true;
         } else if constexpr (std::is_same_v<T, LowSpeedInfo>) {
           JointReport& joint = state.joints[static_cast<std::size_t>(value.joint - 1)];
           joint.voltage_v = value.voltage_v;

@@ -34,11 +34,16 @@ struct ArmState {
   CartesianPose end_pose;             // 0x2A2–0x2A4, the arm's own kinematics
   GripperFeedback gripper;
   bool gripper_seen = false;
-  // Commands a master (leader) arm sends on a shared bus (spec §5.15).
+  // Commands a master (leader) arm sends on a shared bus (spec §5.15); a leader device's joints.
   ModeControl master_mode;
   std::array<double, kArmJoints> master_joints_rad{};
   GripperControl master_gripper;
   bool master_seen = false;
+  bool master_gripper_seen = false;
+  std::uint8_t master_pairs_seen = 0;   // bit per 0x155–0x157 frame since the last complete set
+  bool master_joints_seen = false;      // all three joint command frames have arrived at least once
+  std::uint64_t master_joint_sets = 0;  // complete sets of 0x155–0x157 so far
+  std::int64_t last_master_joints_ns = 0;
   std::int64_t last_status_ns = 0;
   std::int64_t last_joints_ns = 0;
   std::uint64_t frames = 0;              // decoded frames from the arm

@@ -18,6 +18,14 @@ driver::Diagnostics PiperDriver::diagnostics() const {
   }
   std::array<char, 64> rates{};
   std::snprintf(rates.data(), rates.size(), "rx %.0f/s, tx %.0f/s", snapshot.rx_fps, snapshot.tx_fps);
+  if (params_.leader()) {
+    // A leader reports no status: what it commands is what there is to show.
+    return {{"link", std::string(link_name_.data()) + (snapshot.link_up ? " (up)" : " (down)")},
+            {"frames", rates.data()},
+            {"role", "leader: robotd reads its commands and sends it nothing"},
+            {"leader_mode", std::string(control_mode_text(arm.master_mode.ctrl_mode)) + ", " +
+                                move_mode_text(arm.master_mode.move_mode) + (arm.master_mode.mit ? ", 0xAD" : "")}};
+  }
   driver::Diagnostics values{
       {"link", std::string(link_name_.data()) + (snapshot.link_up ? " (up)" : " (down)")},
       {"frames", rates.data()},

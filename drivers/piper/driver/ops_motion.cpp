@@ -42,7 +42,7 @@ std::uint8_t installation_code(const std::string& name) {
 std::uint8_t id_offset(JsonReader& reader, std::string_view key) {
   const auto value = reader.integer(key, 0, 0x20);
   if (!value) return 0;
-  if (*value != 0 && *value != 0x10 && *value != 0x20) {
+  if (!id_offset_valid(static_cast<std::uint8_t>(*value))) {
     reader.error(key, "expected 0, 16 or 32, got " + std::to_string(*value));
     return 0;
   }
@@ -256,13 +256,16 @@ Result<nlohmann::json> PiperOps::master_slave(const nlohmann::json& args) {
   if (!frame) return frame.error();
   if (auto refused = take_arm_for("master_slave")) return *refused;
   if (auto failed = send_all(std::array{frame.value()})) return *failed;
-  return nlohmann::json{{"sent", "MasterSlaveConfig"},
-                        {"role", role},
-                        {"feedback_offset", config.feedback_offset},
-                        {"control_offset", config.control_offset},
-                        {"linkage_offset", config.linkage_offset},
-                        {"note", role == "master" ? "a master arm sends no feedback: robotd will report the link lost"
-                                                  : "the arm sends feedback as a follower"}};
+  return nlohmann::json{
+      {"sent", "MasterSlaveConfig"},
+      {"role", role},
+      {"feedback_offset", config.feedback_offset},
+      {"control_offset", config.control_offset},
+      {"linkage_offset", config.linkage_offset},
+      {"note", role == "master" ? "the arm becomes a leader once restarted; a leader sends only its commands, "
+                                  "which a device with params.role \"leader\" reads"
+                                : "a leader becomes a follower only once restarted (piper_sdk "
+                                  "demo/V2/README.MD); a follower sends feedback"}};
 }
 
 Result<nlohmann::json> PiperOps::master_home(const nlohmann::json& args) {

@@ -71,6 +71,12 @@ driver::DeviceDescription PiperDriver::describe() const {
   description.supports_zero_torque = true;
   description.has_end_pose = true;
   description.ops = op_descriptions();
+  if (params_.leader()) {
+    description.supports_torque = false;
+    description.supports_damping = false;
+    description.supports_zero_torque = false;
+    description.read_only_reason = kLeaderIsReadOnly;
+  }
   return description;
 }
 
@@ -103,12 +109,13 @@ Result<void> PiperDriver::open_and_check_link() {
   }
   if (auto opened = transport_->open(); !opened) return opened.error();
   arm_ = ArmState{};
-  if (auto fed = await_arm_feedback(std::chrono::milliseconds(params_.connect_timeout_ms)); !fed) {
+  if (auto fed = await_arm_frames(std::chrono::milliseconds(params_.connect_timeout_ms)); !fed) {
     transport_->close();
     return fed.error();
   }
-  if (params_.firmware == "auto") detect_firmware();
-  if (!abort_.requested()) read_arm_limits();
+  // A leader is only listened to: no queries, and its firmware and limits do not matter.
+  if (params_.firmware == "auto" && !params_.leader()) detect_firmware();
+  if (!abort_.requested() && !params_.leader()) read_arm_limits();
   if (abort_.requested()) {
     transport_->close();
     return driver::aborted_error("reading the arm's firmware version and limits");
@@ -130,36 +137,18 @@ void PiperDriver::drain_link_blocking_free(std::int64_t now_ns) {
     if (message.id == can_id::kFirmware && !is_firmware_request(message)) {
       firmware_text_.append(reinterpret_cast<const char*>(message.data.data()), message.length);  // NOLINT
     }
-    if (const auto frame = decode(message, codec_)) apply_frame(arm_, *frame, now_ns);
+    if (const auto frame = decode(message, codec_)) {
+      apply_frame(arm_, *frame, now_ns);
+    } else {
+      note_moved_ids(message.id);
+    }
   }
-}
-
-Result<void> PiperDriver::await_arm_feedback(std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  const std::uint64_t frames_before = rx_frames_;
-  while (std::chrono::steady_clock::now() < deadline) {
-    drain_link_blocking_free(monotonic_now_ns());
-    if (arm_.status_seen && arm_.joints_seen) return {};
-    if (!abort_.sleep_for(1ms)) return driver::aborted_error("waiting for the arm's feedback");
-  }
-  const std::string link = transport_->describe();
-  const std::string waited = std::to_string(timeout.count()) + " ms";
-  if (rx_frames_ == frames_before) {
-    return make_error(ErrorCode::kNotAvailable, "no frames on " + link + " within " + waited +
-                                                    ": is the arm powered on, its CAN cable connected and the bus "
-                                                    "at 1 Mbit/s?");
-  }
-  return make_error(ErrorCode::kNotAvailable,
-                    "frames arrive on " + link + " but no arm feedback (status 0x2A1 and joints 0x2A5-0x2A7) within " +
-                        waited +
-                        ": an arm configured as master (teach input) sends none; make it a follower with the "
-                        "master_slave op {\"role\": \"slave\"}");
 }
 
 void PiperDriver::detect_firmware() {
   firmware_text_.clear();
   firmware_note_.clear();
-  if (transport_->send(firmware_request()) != transport::CanIo::kDone) {
+  if (send(firmware_request()) != transport::CanIo::kDone) {
     firmware_note_ = "could not send the firmware query (0x4AF)";
     return;
   }
@@ -189,6 +178,7 @@ Result<void> PiperDriver::recover() {
   abort_.clear();
   const std::lock_guard lock(link_mutex_);
   if (!connected_.load() || link_lost_.load()) return abort_.verdict(connect_locked(), "recover");
+  if (params_.leader()) return {};  // a leader reports no errors, and robotd sends it nothing
   return abort_.verdict(clear_arm_errors(), "recover");
 }
 
@@ -223,6 +213,7 @@ Result<void> PiperDriver::clear_arm_errors() {
 }
 
 Result<void> PiperDriver::reset_zero(std::span<const int> joints) {
+  if (params_.leader()) return make_error(ErrorCode::kRefused, std::string("reset_zero: ") + kLeaderIsReadOnly);
   abort_.clear();
   std::vector<int> targets(joints.begin(), joints.end());
   if (targets.empty()) targets = {0, 1, 2, 3, 4, 5};
@@ -270,6 +261,7 @@ driver::IoResult PiperDriver::read(driver::Feedback& out, driver::FaultInfo& fau
   if (link_lost_.load(std::memory_order_relaxed)) return link_lost(fault, "");
   const std::int64_t now_ns = monotonic_now_ns();
   bool joints_complete = false;
+  const std::uint64_t leader_sets_before = arm_.master_joint_sets;
   CanMessage message;
   for (int i = 0; i < kMaxFramesPerRead; ++i) {
     const transport::CanIo result = transport_->receive(message);
@@ -295,7 +287,16 @@ driver::IoResult PiperDriver::read(driver::Feedback& out, driver::FaultInfo& fau
   }
   update_rates(now_ns);
   const std::int64_t timeout_ns = static_cast<std::int64_t>(params_.feedback_timeout_ms) * 1'000'000;
-  if (now_ns - arm_.last_status_ns > timeout_ns || now_ns - arm_.last_joints_ns > timeout_ns) {
+  if (params_.leader()) {
+    // The leader's joint commands are its only steady stream: they are its link.
+    if (now_ns - arm_.last_master_joints_ns > timeout_ns) {
+      std::array<char, 96> why{};
+      std::snprintf(why.data(), why.size(), "no leader joint commands (0x155-0x157) for %lld ms",
+                    static_cast<long long>((now_ns - arm_.last_master_joints_ns) / 1'000'000));
+      return link_lost(fault, why.data());
+    }
+    joints_complete = arm_.master_joint_sets != leader_sets_before;
+  } else if (now_ns - arm_.last_status_ns > timeout_ns || now_ns - arm_.last_joints_ns > timeout_ns) {
     std::array<char, 96> why{};
     std::snprintf(why.data(), why.size(), "no arm feedback (0x2A1 / 0x2A5-0x2A7) for %lld ms",
                   static_cast<long long>((now_ns - std::min(arm_.last_status_ns, arm_.last_joints_ns)) / 1'000'000));
@@ -309,20 +310,24 @@ driver::IoResult PiperDriver::read(driver::Feedback& out, driver::FaultInfo& fau
 
 void PiperDriver::fill_feedback(driver::Feedback& out, std::int64_t now_ns) noexcept {
   out.joint_count = params_.joint_count();
+  const bool leader = params_.leader();
   std::array<double, kArmJoints> q{};
   for (std::size_t j = 0; j < kArmJoints; ++j) {
     const JointReport& joint = arm_.joints[j];
-    q[j] = joint.position_rad;
-    out.joints[j] = {joint.position_rad, joint.speed_rad_s, joint.current_a * params_.joints[j].effort_nm_per_a};
+    // A leader sends its joints' positions only: no speed, no current.
+    q[j] = leader ? arm_.master_joints_rad[j] : joint.position_rad;
+    out.joints[j] = leader ? driver::JointFeedback{q[j], 0.0, 0.0}
+                           : driver::JointFeedback{joint.position_rad, joint.speed_rad_s,
+                                                   joint.current_a * params_.joints[j].effort_nm_per_a};
   }
   if (params_.gripper) {
     // The gripper reports no speed: differentiate its stroke between joint sets.
-    const double stroke = arm_.gripper.stroke_m;
+    const double stroke = leader ? arm_.master_gripper.stroke_m : arm_.gripper.stroke_m;
     const double dt = static_cast<double>(now_ns - gripper_last_ns_) * 1e-9;
     const double speed = gripper_last_ns_ > 0 && dt > 0 ? (stroke - gripper_last_m_) / dt : 0.0;
     gripper_last_m_ = stroke;
     gripper_last_ns_ = now_ns;
-    out.joints[kArmJoints] = {stroke, speed, arm_.gripper.effort_nm};
+    out.joints[kArmJoints] = {stroke, speed, leader ? arm_.master_gripper.effort_nm : arm_.gripper.effort_nm};
   }
   out.has_end_pose = fk_enabled_.load(std::memory_order_relaxed);
   if (!out.has_end_pose) return;
@@ -336,6 +341,7 @@ driver::IoResult PiperDriver::write(const driver::CommandFrame& command, driver:
     fault = not_connected_fault_;
     return driver::IoResult::kDisconnected;
   }
+  if (params_.leader()) return driver::IoResult::kOk;  // robotd never commands a leader arm
   const std::int64_t now_ns = monotonic_now_ns();
   if (estop_ && !command.estop) {
     resume_deadline_ns_ = now_ns + static_cast<std::int64_t>(params_.reply_timeout_ms) * 1'000'000;
@@ -377,7 +383,7 @@ DisableOutcome PiperDriver::decide_disable(const driver::CommandFrame& command, 
 }
 
 transport::CanIo PiperDriver::send(const CanMessage& message) noexcept {
-  const transport::CanIo result = transport_->send(message);
+  const transport::CanIo result = transport_->send(to_wire(message, codec_));
   if (result == transport::CanIo::kDone) {
     tx_frames_.fetch_add(1, std::memory_order_relaxed);
   } else if (result == transport::CanIo::kNone) {

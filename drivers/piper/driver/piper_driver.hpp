@@ -5,6 +5,10 @@
 // closed, CAN bus error, no arm feedback for feedback_timeout_ms). write() streams commands
 // (command_streamer.hpp) and reports the faults the arm itself reports (arm_state.hpp), so
 // joint states keep flowing while robotd holds the device in FAULT.
+// A leader arm ("role": "leader") sends only its control frames: read() reports its commanded
+// joints (0x155–0x157) and gripper (0x159) and supervises the link on them; robotd sends it
+// nothing (write() is empty, describe() marks the device read-only, the ops that would move or
+// configure it refuse).
 // Other threads: connect()/recover() own the link while the loop is paused; call() ops send
 // frames on the same link (one send is one system call, safe next to the RT thread's) and read
 // the RT thread's published ArmSnapshot.
@@ -37,6 +41,11 @@ namespace robotd::piper {
 inline constexpr std::int32_t kNotConnectedFault = -1;
 inline constexpr std::int32_t kLinkLostFault = -2;
 inline constexpr std::int32_t kBusErrorFault = -3;
+
+/// Why robotd commands nothing on a leader device: the refusal of control requests and ops.
+inline constexpr const char* kLeaderIsReadOnly =
+    "this PiPER is a leader arm (params.role \"leader\"): a person moves it by hand and it commands its follower; "
+    "robotd only reads the joint and gripper commands it sends and sends it nothing";
 
 /// What the RT thread publishes after every read() for diagnostics() and the ops.
 struct ArmSnapshot {
@@ -84,7 +93,13 @@ class PiperDriver final : public driver::Driver {
   // Link (non-RT, link_mutex_ held).
   Result<void> connect_locked();
   Result<void> open_and_check_link();
-  Result<void> await_arm_feedback(std::chrono::milliseconds timeout);
+  /// Waits for the arm's own frames (link_check.cpp): a follower's feedback, a leader's joint
+  /// commands; the error says what arrived instead.
+  Result<void> await_arm_frames(std::chrono::milliseconds timeout);
+  bool arm_frames_complete() const;
+  std::string missing_frames_text(const std::string& waited, bool frames_arrived) const;
+  /// Notes a frame of the arm's kind at ids moved by another offset than configured.
+  void note_moved_ids(std::uint32_t wire_id);
   void detect_firmware();
   /// 0x472 → 0x473 for J1–J6 (the SDK's PiperInit): params_ limits = configured ∩ the arm's.
   void read_arm_limits();
@@ -125,6 +140,9 @@ class PiperDriver final : public driver::Driver {
   std::array<driver::JointLimits, kArmJoints> configured_limits_{};
   std::string arm_limits_note_;       // what the arm's own limits narrowed at the last connect
   std::array<char, 96> link_name_{};  // "stand-in /tmp/piper.sock", for RT messages
+  // Offsets of feedback / control frames seen at connect at ids moved otherwise than configured.
+  std::optional<std::uint8_t> seen_feedback_offset_;
+  std::optional<std::uint8_t> seen_control_offset_;
 
   std::unique_ptr<transport::CanTransport> transport_;
   std::mutex link_mutex_;    // connect / recover / disconnect; never taken by the RT thread

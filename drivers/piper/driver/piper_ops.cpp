@@ -94,6 +94,12 @@ constexpr std::array<OpSpec, 30> kOps{{
      R"(gripper joint and the gripper op (never widens))"},
 }};
 
+// The ops a leader device runs: those that read what the driver has received, and master_slave,
+// the way back to a follower. The others send the arm a motion, a setting or a query: a leader
+// sends only its control frames (piper_sdk asserts/double_piper.MD) and robotd sends it nothing.
+constexpr std::array<std::string_view, 6> kLeaderOps{"state",           "can_fps",        "fk",
+                                                     "master_commands", "fk_calculation", "master_slave"};
+
 std::string_view help_of(std::string_view op) {
   const auto* spec = std::find_if(kOps.begin(), kOps.end(), [&](const OpSpec& s) { return s.name == op; });
   return spec == kOps.end() ? std::string_view{} : spec->help;
@@ -158,6 +164,13 @@ std::optional<CartesianPose> OpArguments::pose(JsonReader& reader) {
 }
 
 Result<nlohmann::json> PiperOps::call(const std::string& op, const nlohmann::json& args) {
+  const bool is_op = std::any_of(kOps.begin(), kOps.end(), [&](const OpSpec& spec) { return spec.name == op; });
+  if (is_op && driver_.params_.leader() && std::find(kLeaderOps.begin(), kLeaderOps.end(), op) == kLeaderOps.end()) {
+    std::string allowed;
+    for (const std::string_view name : kLeaderOps) allowed += (allowed.empty() ? "" : ", ") + std::string(name);
+    return make_error(ErrorCode::kRefused,
+                      op + ": " + kLeaderIsReadOnly + " (a leader device runs only " + allowed + ")");
+  }
   try {
     if (op == "end_pose") return end_pose(args);
     if (op == "move_c") return move_c(args);

@@ -1,5 +1,6 @@
 #include "driver/piper_params.hpp"
 
+#include <limits>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -142,6 +143,21 @@ void read_codec_options(JsonReader& reader, CodecOptions& codec) {
   units->finish();
 }
 
+/// "feedback_id_offset" / "control_id_offset": where the arm's MasterSlaveConfig moved its ids.
+void read_id_offsets(JsonReader& reader, CodecOptions& codec) {
+  for (auto [key, offset] : {std::pair{"feedback_id_offset", &codec.feedback_id_offset},
+                             std::pair{"control_id_offset", &codec.control_id_offset}}) {
+    const std::int64_t value =
+        reader.integer_or(key, 0, std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max());
+    if (value < 0 || value > 0xFF || !id_offset_valid(static_cast<std::uint8_t>(value))) {
+      reader.error(key, "expected 0, 16 (0x10) or 32 (0x20), the offsets MasterSlaveConfig (0x470) takes, got " +
+                            std::to_string(value));
+      continue;
+    }
+    *offset = static_cast<std::uint8_t>(value);
+  }
+}
+
 void read_firmware(JsonReader& reader, PiperParams& out) {
   out.firmware = reader.string_or("firmware", out.firmware);
   if (out.firmware == "auto") return;
@@ -164,6 +180,8 @@ Result<PiperParams> parse_piper_params(const nlohmann::json& params) {
   out.gripper_joint = sdk_gripper();
 
   out.model = reader.string_or("model", out.model);
+  out.role =
+      reader.string_or("role", "follower", {"follower", "leader"}) == "leader" ? ArmRole::kLeader : ArmRole::kFollower;
   reader.require("can", R"(the CAN link, e.g. {"transport": "socketcan", "interface": "can0"})");
   if (auto can = reader.object("can")) out.can = transport::read_can_link(*can);
   out.check_interface = reader.boolean_or("check_interface", out.check_interface);
@@ -184,6 +202,7 @@ Result<PiperParams> parse_piper_params(const nlohmann::json& params) {
   out.gripper = reader.boolean_or("gripper", out.gripper);
   out.gripper_effort_nm = reader.number_or("gripper_effort_nm", out.gripper_effort_nm, NumberRange{.min = 0, .max = 5});
   read_codec_options(reader, out.codec);
+  read_id_offsets(reader, out.codec);
   read_joint_overrides(reader, out);
   reader.finish();
 

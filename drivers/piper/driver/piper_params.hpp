@@ -22,6 +22,12 @@ enum class EnablePolicy : std::uint8_t {
   kManual,     // only through the "enable" op
 };
 
+/// What the arm is on its CAN bus (MasterSlaveConfig 0x470 byte 0, set on the arm beforehand).
+enum class ArmRole : std::uint8_t {
+  kFollower,  // 0xFC, the arm's default: streams feedback, takes commands; robotd drives it
+  kLeader,    // 0xFA, teach input: sends only its control frames; robotd reads them, sends nothing
+};
+
 struct PiperJointParams {
   std::string name;
   driver::JointLimits limits;
@@ -33,6 +39,7 @@ struct PiperJointParams {
 
 struct PiperParams {
   std::string model = "AgileX PiPER";
+  ArmRole role = ArmRole::kFollower;
   transport::CanLinkConfig can;
   bool check_interface = true;   // the SDK's judge_flag: interface up at 1 Mbit/s (SocketCAN only)
   int connect_timeout_ms = 500;  // arm feedback must arrive this soon after opening the link
@@ -50,10 +57,11 @@ struct PiperParams {
   bool disable_on_release = false;  // 0x471 disable when the last session ends (the arm drops!)
   bool gripper = true;              // the gripper is joint 7, "gripper", in metres
   double gripper_effort_nm = 1.0;   // gripping torque when a command carries none
-  CodecOptions codec;               // mit_layout comes from `firmware`
+  CodecOptions codec;               // mit_layout comes from `firmware`; the id offsets from their params
   std::array<PiperJointParams, kArmJoints> joints;
   PiperJointParams gripper_joint;
 
+  bool leader() const { return role == ArmRole::kLeader; }
   std::size_t joint_count() const { return kArmJoints + (gripper ? 1 : 0); }
   const PiperJointParams& joint(std::size_t index) const { return index < kArmJoints ? joints[index] : gripper_joint; }
 };

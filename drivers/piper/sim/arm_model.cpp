@@ -219,6 +219,14 @@ bool ArmModel::teleport(int joint, double position_rad) {
   return true;
 }
 
+bool ArmModel::place_gripper(double stroke_m) {
+  if (!(stroke_m >= 0 && stroke_m <= max_gripper_stroke_m())) return false;
+  gripper_.stroke_m = stroke_m;
+  gripper_.target_m = stroke_m;
+  gripper_.moving = false;
+  return true;
+}
+
 void ArmModel::clear_errors() {
   injected_arm_status_.reset();
   ik_failed_ = false;

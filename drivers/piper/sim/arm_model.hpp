@@ -107,6 +107,8 @@ class ArmModel {
   // --- the control channel ------------------------------------------------------------------
   /// Puts joint `joint` (1–6) at `position_rad` at rest; false if outside its limits.
   bool teleport(int joint, double position_rad);
+  /// Puts the gripper at `stroke_m` at rest; false if outside 0 … its max stroke.
+  bool place_gripper(double stroke_m);
   void inject_arm_status(std::uint8_t code) { injected_arm_status_ = code; }
   void inject_driver_bits(int joint, std::uint8_t bits) { joints_.at(index_of(joint)).injected_driver_bits = bits; }
   void inject_comm_error(int joint, bool error) { joints_.at(index_of(joint)).comm_error = error; }

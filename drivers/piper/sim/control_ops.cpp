@@ -25,7 +25,7 @@ constexpr std::int64_t kMaxDurationMs = 3'600'000;
 constexpr std::int64_t kMaxGarbageFrames = 100'000;
 constexpr const char* kOps =
     "state, reset_counters, silence, drop_replies, garbage, bus_error, raise_error, clear_error, disconnect, "
-    "set_joint";
+    "set_joint, set_gripper, restart";
 
 std::string id_text(std::uint32_t key) {
   std::array<char, 16> text{};
@@ -98,6 +98,17 @@ json Simulator::control(const json& request) {
                            std::to_string(joint) + "'s limits [" + std::to_string(limits.min_rad) + ", " +
                            std::to_string(limits.max_rad) + "] rad");
       }
+    } else if (op == "set_gripper") {
+      expect_fields(request, op, {"stroke_m"});
+      const double stroke = number_field(request, op, "stroke_m");
+      if (!arm_.place_gripper(stroke)) {
+        throw RequestError("op \"set_gripper\": stroke_m " + std::to_string(stroke) + " is outside 0 … " +
+                           std::to_string(arm_.max_gripper_stroke_m()) + " m");
+      }
+    } else if (op == "restart") {
+      expect_fields(request, op, {});
+      restart();
+      reply["role"] = leader_ ? "leader" : "follower";
     } else {
       throw RequestError("unknown op \"" + op + "\": expected one of " + kOps);
     }
@@ -193,6 +204,12 @@ json Simulator::state() const {
           {"collision_levels", arm_.settings().collision_levels},
           {"payload", arm_.settings().payload},
           {"master_slave", arm_.settings().master_slave.linkage},
+          {"master_slave_offsets",
+           {arm_.settings().master_slave.feedback_offset, arm_.settings().master_slave.control_offset,
+            arm_.settings().master_slave.linkage_offset}},
+          {"role", leader_ ? "leader" : "follower"},
+          {"feedback_id_offset", codec_.feedback_id_offset},
+          {"control_id_offset", codec_.control_id_offset},
           {"frames_received", received},
           {"frames_sent", frames_sent_},
           {"bus_open", bus_open_},

@@ -26,7 +26,7 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 }  // namespace
 
-Controller::Controller(ArmModel& arm, CodecOptions codec, std::string software_version)
+Controller::Controller(ArmModel& arm, const CodecOptions& codec, std::string software_version)
     : arm_(arm), codec_(codec), software_version_(std::move(software_version)) {}
 
 void Controller::handle(const CanMessage& message, std::vector<CanMessage>& replies) {
@@ -54,7 +54,8 @@ void Controller::handle(const CanMessage& message, std::vector<CanMessage>& repl
           [&](const EndPoseTargetPart& f) { arm_.end_pose_target(f); },
           [&](const JointTargetPair& f) { arm_.joint_target(f); }, [&](const MoveCPoint& f) { arm_.move_c_point(f); },
           [&](const GripperControl& f) { arm_.gripper_control(f); }, [&](const MitControl& f) { arm_.mit_control(f); },
-          [&](const MasterSlaveConfig& f) { arm_.settings().master_slave = f; },  // no ack (spec §7)
+          // No ack (spec §7); the arm takes it at its next start (Simulator::restart).
+          [&](const MasterSlaveConfig& f) { arm_.settings().master_slave = f; },
           [&](const MasterArmHomeRequest&) {},                  // for a leader arm; the simulated arm is a follower
           [&](const MotorEnable& f) { arm_.motor_enable(f); },  // no ack (spec §7)
           [&](const JointLimitQuery& f) { answer_joint_limit_query(f, replies); },

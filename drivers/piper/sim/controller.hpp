@@ -13,7 +13,8 @@ namespace robotd::piper::sim {
 
 class Controller {
  public:
-  Controller(ArmModel& arm, CodecOptions codec, std::string software_version);
+  /// `codec` is the simulator's: a restart may change its id offsets.
+  Controller(ArmModel& arm, const CodecOptions& codec, std::string software_version);
 
   /// Applies one frame from the bus; appends what the arm answers (0x473, 0x47C, 0x476, 0x478,
   /// 0x47B, 0x47E, the 0x4AF burst) to `replies`.
@@ -28,7 +29,7 @@ class Controller {
   void ack(std::uint8_t command, bool zero_set, std::vector<CanMessage>& replies) const;
 
   ArmModel& arm_;
-  CodecOptions codec_;
+  const CodecOptions& codec_;
   std::string software_version_;
 };
 

@@ -39,6 +39,17 @@ void append_high_rate_feedback(const ArmModel& arm, const CodecOptions& options,
   }
 }
 
+void append_leader_commands(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out) {
+  out.push_back(
+      encode(ModeControl{.ctrl_mode = ControlMode::kCanCommand, .move_mode = MoveMode::kJ, .mit = true}, options));
+  for (const CanMessage& frame : encode_joint_targets(arm.positions())) out.push_back(frame);
+  const SimGripper& gripper = arm.gripper();
+  out.push_back(encode(
+      GripperControl{
+          .stroke_m = gripper.stroke_m, .effort_nm = gripper.commanded_effort_nm, .enable = GripperEnable::kEnable},
+      options));
+}
+
 void append_low_rate_feedback(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out) {
   for (std::size_t i = 0; i < arm.joints().size(); ++i) {
     const SimJoint& joint = arm.joints()[i];

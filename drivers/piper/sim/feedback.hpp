@@ -12,5 +12,9 @@ namespace robotd::piper::sim {
 
 void append_high_rate_feedback(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out);
 void append_low_rate_feedback(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out);
+/// A leader (master) arm's stream instead of feedback (piper_sdk asserts/double_piper.MD): 0x151
+/// (CAN command, MOVE J, 0xAD high-follow, which sets its follower so), 0x155–0x157 with its
+/// joints, 0x159 with its gripper.
+void append_leader_commands(const ArmModel& arm, const CodecOptions& options, std::vector<CanMessage>& out);
 
 }  // namespace robotd::piper::sim

@@ -44,6 +44,23 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
   app.add_option("--initial", initial, "the joints at start, rad: q1,q2,q3,q4,q5,q6 (default all 0)");
+  std::string role = "follower";
+  app.add_option("--role", role,
+                 "follower: stream feedback and take commands; leader: send a leader arm's commands (0x151, "
+                 "0x155-0x157, 0x159) from the joints, no feedback")
+      ->check(CLI::IsMember({"follower", "leader"}))
+      ->capture_default_str();
+  int feedback_offset = 0;
+  int control_offset = 0;
+  app.add_option("--feedback-id-offset", feedback_offset,
+                 "MasterSlaveConfig feedback offset: 0x2A1-0x2A8 go out at 0x2B1-0x2B8 (16) or 0x2C1-0x2C8 (32)")
+      ->check(CLI::IsMember({0, 16, 32}))
+      ->capture_default_str();
+  app.add_option("--control-id-offset", control_offset,
+                 "MasterSlaveConfig control offset (a leader's linkage offset): 0x150-0x15F are taken (a leader "
+                 "sends them) at 0x160-0x16F (16) or 0x170-0x17F (32)")
+      ->check(CLI::IsMember({0, 16, 32}))
+      ->capture_default_str();
   app.add_flag("--quiet", options.quiet, "log only warnings and errors to stderr");
   int rt_priority = 0;
   robotd::sim_control::add_rt_priority_option(app, rt_priority);
@@ -60,6 +77,9 @@ int main(int argc, char** argv) {
     options.bus.interface = interface;
   }
   options.dh = dh == "plain" ? robotd::piper::DhVariant::kPlain : robotd::piper::DhVariant::kOffset;
+  options.leader = role == "leader";
+  options.feedback_id_offset = static_cast<std::uint8_t>(feedback_offset);
+  options.control_id_offset = static_cast<std::uint8_t>(control_offset);
   if (robotd::piper::software_version(robotd::piper::sim::firmware_text(options.firmware)) != options.firmware) {
     return fail("--firmware '" + options.firmware +
                 "' is not a version the arm could report: 8 characters such as S-V1.8-2");
@@ -78,11 +98,12 @@ int main(int argc, char** argv) {
 
   const volatile std::sig_atomic_t& stop_requested = robotd::sim_control::stop_on_signals();
 
-  spdlog::info("{} firmware {}, feedback {} Hz{}",
+  spdlog::info("{} firmware {}, {} {} Hz, id offsets feedback 0x{:02X} control 0x{:02X}{}",
                options.bus.kind == robotd::transport::CanLinkConfig::Kind::kStandIn
                    ? "stand-in bus " + options.bus.path
                    : "SocketCAN " + options.bus.interface,
-               options.firmware, options.feedback_rate_hz,
+               options.firmware, options.leader ? "leader commands" : "feedback", options.feedback_rate_hz,
+               options.feedback_id_offset, options.control_id_offset,
                options.control_path.empty() ? "" : ", control " + options.control_path);
   robotd::sim_control::announce_ready();
   simulator.run(stop_requested);

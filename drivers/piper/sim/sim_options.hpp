@@ -18,6 +18,9 @@ struct SimOptions {
   DhVariant dh = DhVariant::kOffset;
   double feedback_rate_hz = 200;  // the 0x2Ax / 0x25x group; 0x26x runs at a fifth of it
   std::array<double, kArmJoints> initial_rad{};
+  bool leader = false;                  // --role leader: sends a leader's commands, no feedback
+  std::uint8_t feedback_id_offset = 0;  // --feedback-id-offset: 0x2Ax sent at 0x2Ax + offset
+  std::uint8_t control_id_offset = 0;   // --control-id-offset: 0x15x taken (a leader: sent) at 0x15x + offset
   bool quiet = false;
 };
 

@@ -20,12 +20,17 @@ constexpr int kLowRateDivider = 5;           // 0x261–0x266 at a fifth of the 
 constexpr int kMaxFramesPerPoll = 1000;
 constexpr int kGarbagePerLoop = 10;  // spread out, so feedback keeps flowing between them
 constexpr std::int64_t kReopenRetryNs = 100'000'000;
+constexpr std::uint8_t kLinkageLeader = 0xFA;  // 0x470 byte 0
+constexpr std::uint8_t kLinkageFollower = 0xFC;
 
 }  // namespace
 
 Simulator::Simulator(SimOptions options)
     : options_(std::move(options)),
-      codec_{.mit_layout = mit_layout_for(options_.firmware)},
+      codec_{.mit_layout = mit_layout_for(options_.firmware),
+             .feedback_id_offset = options_.feedback_id_offset,
+             .control_id_offset = options_.control_id_offset},
+      leader_(options_.leader),
       arm_(options_.initial_rad, options_.dh, codec_.mit_layout),
       controller_(arm_, codec_, options_.firmware),
       bus_(transport::make_can_bus(options_.bus)) {
@@ -97,6 +102,9 @@ void Simulator::poll_bus() {
     if (result == transport::CanIo::kBusError) continue;
     ++frames_received_[message.extended ? message.id | 0x80000000U : message.id];
     replies.clear();
+    // A leader is moved by hand and drives its follower: of the host's frames it takes only
+    // 0x470 (its role for the next start), which has no reply.
+    if (leader_ && (message.extended || message.id != can_id::kMasterSlaveConfig)) continue;
     const bool was_estopped = arm_.estop();
     controller_.handle(message, replies);
     if (arm_.estop() && !was_estopped) estop_since_ns_ = monotonic_ns();
@@ -123,7 +131,11 @@ void Simulator::send_feedback(std::int64_t now_ns) {
   if (now_ns >= next_high_rate_ns_) {
     if (!silent) {
       outgoing_.clear();
-      append_high_rate_feedback(arm_, codec_, outgoing_);
+      if (leader_) {
+        append_leader_commands(arm_, codec_, outgoing_);
+      } else {
+        append_high_rate_feedback(arm_, codec_, outgoing_);
+      }
       for (const CanMessage& frame : outgoing_) send(frame);
     }
     next_high_rate_ns_ += high_rate_period_ns_;
@@ -132,7 +144,7 @@ void Simulator::send_feedback(std::int64_t now_ns) {
     }
   }
   if (now_ns >= next_low_rate_ns_) {
-    if (!silent) {
+    if (!silent && !leader_) {
       outgoing_.clear();
       append_low_rate_feedback(arm_, codec_, outgoing_);
       for (const CanMessage& frame : outgoing_) send(frame);
@@ -161,7 +173,24 @@ void Simulator::reopen_bus_if_due(std::int64_t now_ns) {
 }
 
 void Simulator::send(const CanMessage& message) {
-  if (bus_open_ && bus_->send(message) == transport::CanIo::kDone) ++frames_sent_;
+  if (bus_open_ && bus_->send(to_wire(message, codec_)) == transport::CanIo::kDone) ++frames_sent_;
+}
+
+void Simulator::restart() {
+  const ArmSettings kept = arm_.settings();
+  arm_ = ArmModel(arm_.positions(), options_.dh, codec_.mit_layout);
+  arm_.settings() = kept;
+  const MasterSlaveConfig& config = kept.master_slave;
+  if (config.linkage == kLinkageLeader || config.linkage == kLinkageFollower) {
+    leader_ = config.linkage == kLinkageLeader;
+    codec_.feedback_id_offset = config.feedback_offset;
+    // A leader sends its commands at the linkage offset; a follower takes them at its control offset.
+    codec_.control_id_offset = leader_ ? config.linkage_offset : config.control_offset;
+  }
+  if (!options_.quiet) {
+    spdlog::info("restarted as {}, id offsets feedback 0x{:02X} control 0x{:02X}", leader_ ? "leader" : "follower",
+                 codec_.feedback_id_offset, codec_.control_id_offset);
+  }
 }
 
 Simulator::Summary Simulator::summary() const {

@@ -35,6 +35,10 @@ class Simulator {
   /// One control-channel request and its reply (control_ops.cpp).
   nlohmann::json control(const nlohmann::json& request);
 
+  /// What the arm does at power-up: motors off, standby, settings kept; the stored
+  /// MasterSlaveConfig (0x470) takes effect (role and id offsets), as the arm takes it at a restart.
+  void restart();
+
  private:
   struct Summary {  // what is logged when it changes
     ControlMode ctrl_mode = ControlMode::kStandby;
@@ -60,7 +64,8 @@ class Simulator {
   nlohmann::json raise_error(const nlohmann::json& request);
 
   SimOptions options_;
-  CodecOptions codec_;
+  CodecOptions codec_;   // with the id offsets in force
+  bool leader_ = false;  // the role in force
   ArmModel arm_;
   Controller controller_;
   std::unique_ptr<transport::CanTransport> bus_;

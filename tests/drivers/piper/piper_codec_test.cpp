@@ -989,5 +989,38 @@ TEST(PiperCodecRefusal, NamesTheFieldTheSdkWouldRefuse) {
   EXPECT_NE(refusal(GripperParamSet{.params = GripperParams{.max_range_mm = 80}}), nullptr);
 }
 
+// MasterSlaveConfig offsets move the control ids (0x15x) and the feedback ids (0x2Ax), nothing
+// else: to_wire() moves them on the way out, decode() takes them back, and ids at another offset
+// are another arm's (not decoded), whose offset feedback_offset_of / control_offset_of name.
+TEST(PiperCodecIdOffsets, ControlAndFeedbackIdsMoveAndComeBack) {
+  const CodecOptions moved{.feedback_id_offset = 0x10, .control_id_offset = 0x20};
+  const auto joints = encode_joint_targets({0.1, 0.2, 0.3, 0.4, 0.5, 0.6});
+  EXPECT_EQ(to_wire(joints[1], moved).id, 0x176U);
+  EXPECT_EQ(to_wire(encode(MitControl{.joint = 6}), moved).id, 0x17FU);
+  EXPECT_EQ(to_wire(encode(ArmStatus{}), moved).id, 0x2B1U);
+  EXPECT_EQ(to_wire(encode(GripperFeedback{}), moved).id, 0x2B8U);
+  for (const CanMessage& unmoved : {encode(HighSpeedInfo{.joint = 1}), encode(MotorEnable{}), firmware_request(),
+                                    encode(MasterArmHomeRequest{}), encode(SetAck{})}) {
+    EXPECT_EQ(to_wire(unmoved, moved).id, unmoved.id);
+  }
+  const auto pair = decode(to_wire(joints[1], moved), moved);
+  ASSERT_TRUE(pair && std::holds_alternative<JointTargetPair>(*pair));
+  EXPECT_EQ(std::get<JointTargetPair>(*pair).pair, 1);
+  EXPECT_NEAR(std::get<JointTargetPair>(*pair).first_rad, 0.3, 1e-5);
+  ASSERT_TRUE(decode(to_wire(encode(ArmStatus{}), moved), moved));
+  // At the protocol's own ids, or at the other offset, they are another arm's frames.
+  EXPECT_FALSE(decode(joints[1], moved));
+  EXPECT_FALSE(decode(encode(ArmStatus{}), moved));
+  EXPECT_FALSE(decode(to_wire(encode(ArmStatus{}), CodecOptions{.feedback_id_offset = 0x20}), moved));
+  EXPECT_FALSE(decode(to_wire(encode(ArmStatus{}), moved), CodecOptions{}));
+  EXPECT_EQ(feedback_offset_of(0x2C5), std::optional<std::uint8_t>(0x20));
+  EXPECT_EQ(feedback_offset_of(0x2A1), std::optional<std::uint8_t>(0x00));
+  EXPECT_EQ(feedback_offset_of(0x2B9), std::nullopt);
+  EXPECT_EQ(control_offset_of(0x16F), std::optional<std::uint8_t>(0x10));
+  EXPECT_EQ(control_offset_of(0x180), std::nullopt);
+  EXPECT_TRUE(id_offset_valid(0x20));
+  EXPECT_FALSE(id_offset_valid(0x30));
+}
+
 }  // namespace
 }  // namespace robotd::piper

@@ -558,8 +558,11 @@ TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
       10s))
       << loop.feedback().end_pose.position_m[0];
 
+  const auto joint_frames = [&] { return sim_.control({{"op", "state"}})["frames_received"].value("0x155", 0); };
+  const int joint_frames_before = joint_frames();
   loop.set_command(positions({0.2, 0.6, -0.8, 0.1, 0.3, 0.2}));
-  std::this_thread::sleep_for(50ms);  // a few ticks: the driver has seen the session's joints
+  // The session's joints stream: the driver's write() has seen them.
+  ASSERT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return joint_frames() > joint_frames_before; }));
   const auto refused = driver_.call("end_pose", args);
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().code, ErrorCode::kRefused);

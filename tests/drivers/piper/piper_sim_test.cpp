@@ -799,6 +799,43 @@ TEST_F(PiperSimTest, KilledAndRestartedItServesTheSamePath) {
   EXPECT_TRUE(wait_for([this] { return heard_.frames > 100; }, 1s));
 }
 
+// --- leader and id offsets ----------------------------------------------------------------------
+
+// --role leader: what a leader arm sends (0x151 with 0xAD, 0x155–0x157 from its joints, 0x159) and
+// no feedback; it keeps a 0x470 and takes it at its next start.
+TEST_F(PiperSimTest, ALeaderSendsItsCommandsNoFeedbackAndTakesA470AtARestart) {
+  start({"--quiet", "--role", "leader"});
+  ASSERT_TRUE(sim_->control({{"op", "set_joint"}, {"joint", 4}, {"position_rad", 0.6}})["ok"].get<bool>());
+  ASSERT_TRUE(wait_for(
+      [this] {
+        const auto pairs = heard_.replies_of<JointTargetPair>();
+        return !heard_.replies_of<ModeControl>().empty() && !heard_.replies_of<GripperControl>().empty() &&
+               std::any_of(pairs.begin(), pairs.end(), [](const JointTargetPair& pair) {
+                 return pair.pair == 1 && std::abs(pair.second_rad - 0.6) < kWireRad;
+               });
+      },
+      2s));
+  const ModeControl mode = heard_.replies_of<ModeControl>().back();
+  EXPECT_EQ(mode.ctrl_mode, ControlMode::kCanCommand);
+  EXPECT_EQ(mode.move_mode, MoveMode::kJ);
+  EXPECT_TRUE(mode.mit) << "a leader sets its follower to high follow (0xAD)";
+  EXPECT_FALSE(heard_.status_seen);
+  EXPECT_EQ(heard_.joint_pairs, 0);
+  EXPECT_EQ(heard_.low_seen, 0);
+
+  send(MasterSlaveConfig{.linkage = 0xFC, .feedback_offset = 0x10});
+  ASSERT_TRUE(wait_for([this] { return state()["master_slave"] == 0xFC; }, 1s));
+  EXPECT_EQ(state()["role"], "leader") << "0x470 waits for the arm's restart";
+  const nlohmann::json restarted = sim_->control({{"op", "restart"}});
+  EXPECT_EQ(restarted["role"], "follower") << restarted.dump();
+  EXPECT_EQ(state()["feedback_id_offset"], 0x10);
+  heard_ = Heard{};
+  // Its feedback now goes out at 0x2B1–0x2B8, which a node without the offset does not decode.
+  ASSERT_TRUE(wait_for([this] { return heard_.low_seen == 0x3F; }, 1s));
+  EXPECT_FALSE(heard_.status_seen);
+  EXPECT_GT(heard_.undecodable, 0);
+}
+
 TEST(PiperSimCommandLine, BadOptionsExitWith2) {
   EXPECT_EQ(run_to_exit({}), 2) << "no bus";
   EXPECT_EQ(run_to_exit({"--standin", "/tmp/x.sock", "--interface", "can0"}), 2);

@@ -29,7 +29,7 @@
 namespace robotd::driver {
 
 /// Bump when anything in this header or types.hpp changes layout or meaning.
-inline constexpr std::uint32_t kAbiVersion = 6;
+inline constexpr std::uint32_t kAbiVersion = 7;
 
 struct JointLimits {
   double position_min_rad = -3.14;
@@ -73,6 +73,9 @@ struct DeviceDescription {
   bool has_imu = false;
   bool has_end_pose = false;  // Feedback carries the end effector's pose
   std::vector<OpDescription> ops;
+  // Non-empty: the device only reports (e.g. a leader arm a person moves by hand); robotd grants
+  // no control of it and refuses a request with this text, which says why.
+  std::string read_only_reason;
 };
 
 using Diagnostics = std::vector<std::pair<std::string, std::string>>;
