@@ -1,4 +1,5 @@
 // End to end through a real robotd process: sessions (issue tests 1, 2, 3, 6).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -142,7 +143,16 @@ void SessionTest::expect_fallback_after_kill(Behavior behavior, const std::strin
   EXPECT_GE(elapsed_ms, kTimeoutMs - 5);
   EXPECT_LT(elapsed_ms, kTimeoutMs + 250);
 
-  const nlohmann::json sim = sim_state();
+  // The loop applies the fallback on the tick after the session ends.
+  const auto fallback_applied = [](const nlohmann::json& state) {
+    return std::all_of(state["joints"].begin(), state["joints"].end(),
+                       [](const nlohmann::json& joint) { return joint["command"] == "impedance"; });
+  };
+  nlohmann::json sim = sim_state();
+  for (const auto deadline = std::chrono::steady_clock::now() + 2s;
+       !fallback_applied(sim) && std::chrono::steady_clock::now() < deadline; sim = sim_state()) {
+    std::this_thread::sleep_for(1ms);
+  }
   for (const auto& joint : sim["joints"]) {
     EXPECT_EQ(joint["command"], "impedance") << joint.dump();
     EXPECT_EQ(joint["kp"], 0.0) << joint.dump();
