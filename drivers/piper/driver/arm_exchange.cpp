@@ -1,9 +1,9 @@
 // Request → reply exchanges with the arm for the ops: queries (0x472, 0x477, 0x4AF) and
 // settings acknowledged on 0x476. The RT thread reads the bus and hands replies over through
 // the reply ring; an exchange waits on that ring.
-#include <cstdio>
 #include <thread>
 
+#include "driver/hex_text.hpp"
 #include "driver/piper_driver.hpp"
 #include "robotd/driver/monotonic_clock.hpp"
 
@@ -11,12 +11,6 @@ namespace robotd::piper {
 namespace {
 
 using namespace std::chrono_literals;
-
-std::string hex_id(std::uint32_t id) {
-  std::array<char, 8> text{};
-  std::snprintf(text.data(), text.size(), "0x%03X", id);
-  return text.data();
-}
 
 }  // namespace
 
@@ -29,7 +23,8 @@ Result<std::vector<CanMessage>> PiperDriver::exchange(std::span<const CanMessage
   replies_.clear();
   for (const CanMessage& request : requests) {
     if (send(request) != transport::CanIo::kDone) {
-      return make_error(ErrorCode::kTransport, "could not send " + hex_id(request.id) + " on " + link_name_.data());
+      return make_error(ErrorCode::kTransport,
+                        "could not send " + can_id_text(request.id) + " on " + link_name_.data());
     }
   }
   std::vector<CanMessage> replies;
@@ -43,7 +38,7 @@ Result<std::vector<CanMessage>> PiperDriver::exchange(std::span<const CanMessage
       continue;
     }
     if (std::chrono::steady_clock::now() >= deadline) {
-      return make_error(ErrorCode::kTimeout, "no answer (" + hex_id(reply_id) + ") from the arm within " +
+      return make_error(ErrorCode::kTimeout, "no answer (" + can_id_text(reply_id) + ") from the arm within " +
                                                  std::to_string(params_.reply_timeout_ms) + " ms; got " +
                                                  std::to_string(replies.size()) + " of " + std::to_string(count) +
                                                  " (firmware too old for this query, or the arm is busy?)");
@@ -60,7 +55,7 @@ Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::ui
   }
   replies_.clear();
   if (send(request) != transport::CanIo::kDone) {
-    return make_error(ErrorCode::kTransport, "could not send " + hex_id(request.id) + " on " + link_name_.data());
+    return make_error(ErrorCode::kTransport, "could not send " + can_id_text(request.id) + " on " + link_name_.data());
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(params_.reply_timeout_ms);
   while (std::chrono::steady_clock::now() < deadline) {
@@ -70,7 +65,7 @@ Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::ui
       if (!maintenance) {
         std::this_thread::sleep_for(1ms);
       } else if (!abort_.sleep_for(1ms)) {
-        return driver::aborted_error("waiting for the acknowledge of " + hex_id(request.id));
+        return driver::aborted_error("waiting for the acknowledge of " + can_id_text(request.id));
       }
       continue;
     }
@@ -78,9 +73,9 @@ Result<SetAck> PiperDriver::set_and_await_ack(const CanMessage& request, std::ui
     const auto* ack = frame ? std::get_if<SetAck>(&*frame) : nullptr;
     if (ack != nullptr && ack->command == command) return *ack;
   }
-  return make_error(ErrorCode::kTimeout, "the arm did not acknowledge " + hex_id(request.id) + " (no 0x476 with " +
-                                             hex_id(command) + ") within " + std::to_string(params_.reply_timeout_ms) +
-                                             " ms");
+  return make_error(ErrorCode::kTimeout, "the arm did not acknowledge " + can_id_text(request.id) + " (no 0x476 with " +
+                                             can_id_text(command) + ") within " +
+                                             std::to_string(params_.reply_timeout_ms) + " ms");
 }
 
 }  // namespace robotd::piper

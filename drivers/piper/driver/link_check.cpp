@@ -1,10 +1,9 @@
 // connect()'s wait for the arm's own frames (a follower's feedback, a leader's joint commands)
 // and, when they do not come, what arrived instead: nothing, the other role's frames, or the
 // right frames at ids a MasterSlaveConfig offset moved.
-#include <array>
-#include <cstdio>
 #include <string>
 
+#include "driver/hex_text.hpp"
 #include "driver/piper_driver.hpp"
 #include "robotd/driver/monotonic_clock.hpp"
 
@@ -13,18 +12,12 @@ namespace {
 
 using namespace std::chrono_literals;
 
-std::string hex(std::uint32_t value) {
-  std::array<char, 12> text{};
-  std::snprintf(text.data(), text.size(), "0x%X", value);
-  return text.data();
-}
-
 /// "… arrive at 0x2B1-0x2B8, moved by a feedback offset 0x10: set params.feedback_id_offset to 16 (0x10)".
 std::string moved_ids_text(std::uint32_t first, std::uint32_t last, std::uint8_t offset, const char* kind,
                            const char* param) {
-  return std::string("they arrive at ") + hex(first + offset) + "-" + hex(last + offset) + ", moved by a " + kind +
-         " offset " + hex(offset) + " (MasterSlaveConfig, 0x470): set params." + param + " to " +
-         std::to_string(offset) + " (" + hex(offset) + ")";
+  return std::string("they arrive at ") + can_id_text(first + offset) + "-" + can_id_text(last + offset) +
+         ", moved by a " + kind + " offset " + hex_text(offset, 2) + " (MasterSlaveConfig, 0x470): set params." +
+         param + " to " + std::to_string(offset) + " (" + hex_text(offset, 2) + ")";
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "driver/hex_text.hpp"
 #include "driver/piper_ops.hpp"
 #include "kinematics/piper_kinematics.hpp"
 
@@ -25,12 +26,6 @@ std::optional<Error> no_arguments(std::string_view op, const nlohmann::json& arg
   return arguments.finish();
 }
 
-std::string hex_byte(std::uint8_t value) {
-  std::array<char, 8> text{};
-  std::snprintf(text.data(), text.size(), "0x%02X", value);
-  return text.data();
-}
-
 nlohmann::json joint_json(const JointReport& joint, const PiperJointParams& params) {
   return {{"position_rad", joint.position_rad},
           {"speed_rad_s", joint.speed_rad_s},
@@ -40,7 +35,7 @@ nlohmann::json joint_json(const JointReport& joint, const PiperJointParams& para
           {"voltage_v", joint.voltage_v},
           {"driver_temperature_c", joint.driver_temperature_c},
           {"motor_temperature_c", joint.motor_temperature_c},
-          {"driver_status", hex_byte(joint.driver_status)},
+          {"driver_status", hex_text(joint.driver_status, 2)},
           {"driver_faults", driver_status_text(joint.driver_status)},
           {"bus_current_a", joint.bus_current_a},
           {"enabled", joint.enabled()}};
