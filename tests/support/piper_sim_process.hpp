@@ -2,12 +2,16 @@
 // channel, ready when it printed "ready"; asked to report or misbehave over that channel.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "sim_process.hpp"
 
 namespace robotd::testing {
+
+/// Joints of a PiPER device as robotd describes it: the six arm joints and the gripper.
+inline constexpr std::size_t kPiperDeviceJoints = 7;
 
 class PiperSimProcess : public SimProcess {
  public:

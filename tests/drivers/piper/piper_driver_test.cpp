@@ -31,11 +31,11 @@ nlohmann::json driver_params(const std::string& bus_path, const nlohmann::json& 
   return params;
 }
 
-constexpr std::size_t kDeviceJoints = 7;  // six arm joints and the gripper
+using testing::kPiperDeviceJoints;
 
 driver::CommandFrame positions(const std::array<double, 6>& q, bool owned = true) {
   driver::CommandFrame frame;
-  frame.joint_count = kDeviceJoints;
+  frame.joint_count = kPiperDeviceJoints;
   for (std::size_t j = 0; j < 6; ++j)
     frame.joints[j] = {.kind = JointCommandKind::kPosition, .owned = owned, .position_rad = q[j]};
   return frame;
@@ -149,7 +149,7 @@ TEST(PiperConfigs, ShippedExamplesAndTheDefaultConfigParse) {
 
 TEST_F(PiperDriverTest, StreamedPositionsEnableTheArmAndMoveIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const std::array<double, 6> target{0.3, 0.4, -0.5, 0.2, -0.3, 0.6};
   loop.set_command(positions(target));
   EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) {
@@ -172,7 +172,7 @@ TEST_F(PiperDriverTest, StreamedPositionsEnableTheArmAndMoveIt) {
 
 TEST_F(PiperDriverTest, ImpedanceCommandsDriveTheArmInMitMode) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   driver::CommandFrame frame = positions({0, 0, 0, 0, 0, 0});
   frame.joints[5] = {.kind = JointCommandKind::kImpedance, .owned = true, .position_rad = 0.5, .kp = 10, .kd = 0.8};
   loop.set_command(frame);
@@ -184,7 +184,7 @@ TEST_F(PiperDriverTest, ImpedanceCommandsDriveTheArmInMitMode) {
 
 TEST_F(PiperDriverTest, EstopStopsTheArmAndResetResumesIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   loop.set_command(positions({0.2, 0.2, -0.2, 0, 0, 0}));
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return std::fabs(l.feedback().joints[0].position_rad - 0.2) < 0.01; }));
   driver::CommandFrame stopped = positions({0.2, 0.2, -0.2, 0, 0, 0});
@@ -203,7 +203,7 @@ TEST_F(PiperDriverTest, EstopStopsTheArmAndResetResumesIt) {
 
 TEST_F(PiperDriverTest, ArmFaultIsReportedWithItsTextAndRecoverClearsIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   loop.set_command(positions({0, 0, 0, 0, 0, 0}));
   ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"arm_status", 7}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
@@ -218,7 +218,7 @@ TEST_F(PiperDriverTest, ArmFaultIsReportedWithItsTextAndRecoverClearsIt) {
 
 TEST_F(PiperDriverTest, DriverFaultBitsNameTheJointAndTheProblem) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   loop.set_command(positions({0, 0, 0, 0, 0, 0}));
   ASSERT_TRUE(sim_.control({{"op", "raise_error"}, {"joint", 3}, {"driver_status_bits", 0x04}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_write() == IoResult::kFault; }));
@@ -228,7 +228,7 @@ TEST_F(PiperDriverTest, DriverFaultBitsNameTheJointAndTheProblem) {
 
 TEST_F(PiperDriverTest, SilentArmIsALostLinkAndRecoverWaitsForItsReturn) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto silent_until = std::chrono::steady_clock::now() + 2s;
   ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 2000}})["ok"].get<bool>());
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
@@ -249,7 +249,7 @@ TEST_F(PiperDriverTest, AnAbortEndsARecoverOrResetZeroWaitingForTheArmAndTheNext
   ASSERT_TRUE(driver.configure(driver_params(sim_.bus_path(), {{"connect_timeout_ms", kConnectTimeout.count()},
                                                                {"reply_timeout_ms", kReplyTimeout.count()}})));
   ASSERT_TRUE(driver.connect());
-  DriverLoop loop(driver, kDeviceJoints);
+  DriverLoop loop(driver, kPiperDeviceJoints);
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
 
   // No acknowledge: reset_zero waits reply_timeout_ms for each joint's.
@@ -294,7 +294,7 @@ TEST_F(PiperDriverTest, AnAbortEndsARecoverOrResetZeroWaitingForTheArmAndTheNext
 
 TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   sim_.kill_hard();
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kDisconnected; }));
   EXPECT_NE(loop.fault_text().find("CAN link closed"), std::string::npos) << loop.fault_text();
@@ -309,7 +309,7 @@ TEST_F(PiperDriverTest, KilledSimulatorIsALostLinkAndARestartedOneReconnects) {
 
 TEST_F(PiperDriverTest, CanBusErrorIsAFaultThatNamesTheError) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   ASSERT_TRUE(sim_.control({{"op", "bus_error"}})["ok"].get<bool>());
   // One kFault read: robotd's loop latches it (the test loop keeps its text).
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.fault_text().find("CAN bus error") != std::string::npos; }))
@@ -320,7 +320,7 @@ TEST_F(PiperDriverTest, CanBusErrorIsAFaultThatNamesTheError) {
 
 TEST_F(PiperDriverTest, GarbageOnTheBusIsCountedNotFatal) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   ASSERT_TRUE(sim_.control({{"op", "garbage"}, {"frames", 500}})["ok"].get<bool>());
   std::this_thread::sleep_for(200ms);
   EXPECT_NE(loop.last_read(), IoResult::kDisconnected);
@@ -331,7 +331,7 @@ TEST_F(PiperDriverTest, GarbageOnTheBusIsCountedNotFatal) {
 
 TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto limits = driver_.call("limits", nullptr);
   ASSERT_TRUE(limits) << limits.error().message;
   ASSERT_EQ(limits.value()["joints"].size(), 6U) << limits.value().dump();
@@ -355,7 +355,7 @@ TEST_F(PiperDriverTest, QueriesReturnWhatTheArmHolds) {
 
 TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto crash = driver_.call("set_crash_protection", {{"levels", {1, 2, 3, 4, 5, 6}}});
   ASSERT_TRUE(crash) << crash.error().message;
   const auto levels = driver_.call("crash_protection", nullptr);
@@ -389,7 +389,7 @@ TEST_F(PiperDriverTest, SettingsAreAcknowledgedAndReadBack) {
 TEST_F(PiperDriverTest, TheArmsNarrowerLimitsNarrowTheConfigAtConnect) {
   ASSERT_TRUE(driver_.connect());
   {
-    DriverLoop loop(driver_, kDeviceJoints);
+    DriverLoop loop(driver_, kPiperDeviceJoints);
     const auto narrowed =
         driver_.call("set_joint_limits", {{"joint", 1}, {"max_angle_rad", 1.0}, {"max_speed_rad_s", 1.5}});
     ASSERT_TRUE(narrowed) << narrowed.error().message;
@@ -422,7 +422,7 @@ TEST_F(PiperDriverTest, TheArmsNarrowerLimitsNarrowTheConfigAtConnect) {
 TEST_F(PiperDriverTest, SdkLimitOpsNarrowTheDescribedLimitsAtRunTimeAndNeverWidenThem) {
   ASSERT_TRUE(driver_.connect());
   {
-    DriverLoop loop(driver_, kDeviceJoints);
+    DriverLoop loop(driver_, kPiperDeviceJoints);
     const auto narrowed = driver_.call("sdk_joint_limit", {{"joint", "j1"}, {"min_rad", -1.0}, {"max_rad", 0.5}});
     ASSERT_TRUE(narrowed) << narrowed.error().message;
     EXPECT_EQ(narrowed.value()["joint"], "joint1");
@@ -464,7 +464,7 @@ TEST_F(PiperDriverTest, SdkLimitOpsNarrowTheDescribedLimitsAtRunTimeAndNeverWide
 
 TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto bad_joint = driver_.call("set_max_acc", {{"joint", 9}, {"max_acc_rad_s2", 1}});
   ASSERT_FALSE(bad_joint);
   EXPECT_EQ(bad_joint.error().code, ErrorCode::kInvalidArgument);
@@ -484,7 +484,7 @@ TEST_F(PiperDriverTest, OpsRejectBadArgumentsWithUsage) {
 // EnableFkCal / DisableFkCal at run time: the flange pose stops and resumes without a reconnect.
 TEST_F(PiperDriverTest, FkCalculationTurnsOffAndOnAtRunTime) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   EXPECT_TRUE(loop.wait_for([](DriverLoop& l) { return l.feedback().has_end_pose; }));
   const auto off = driver_.call("fk_calculation", {{"enabled", false}});
   ASSERT_TRUE(off) << off.error().message;
@@ -500,7 +500,7 @@ TEST_F(PiperDriverTest, FkCalculationTurnsOffAndOnAtRunTime) {
 // ArmParamEnquiryAndConfig query 0x03 goes out; the index comes from the status that follows.
 TEST_F(PiperDriverTest, TrajectoryIndexQueryIsSentAndAnswered) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto index = driver_.call("trajectory_index", nullptr);
   ASSERT_TRUE(index) << index.error().message;
   EXPECT_EQ(index.value()["trajectory_index"], 0);
@@ -517,7 +517,7 @@ TEST_F(PiperDriverTest, OpsRefuseWhatTheArmDoesNotTake) {
   ASSERT_TRUE(
       fine_units.configure(driver_params(sim_.bus_path(), {{"units", {{"max_speed_rad_s_per_count", 0.0005}}}})));
   ASSERT_TRUE(fine_units.connect());
-  DriverLoop loop(fine_units, kDeviceJoints);
+  DriverLoop loop(fine_units, kPiperDeviceJoints);
   const auto refused = fine_units.call("set_max_speed", {{"joint", 1}, {"max_speed_rad_s", 3.0}});
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().code, ErrorCode::kInvalidArgument);
@@ -529,7 +529,7 @@ TEST_F(PiperDriverTest, OpsRefuseWhatTheArmDoesNotTake) {
 // ReqMasterArmMoveToHome (0x191): the SDK's three modes, byte for byte; anything else refused.
 TEST_F(PiperDriverTest, MasterHomeSendsTheLeaderArmRequest) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto sent = driver_.call("master_home", {{"mode", "leader_to_zero"}});
   ASSERT_TRUE(sent) << sent.error().message;
   EXPECT_EQ(sent.value()["sent"], "ReqMasterArmMoveToHome");
@@ -543,7 +543,7 @@ TEST_F(PiperDriverTest, MasterHomeSendsTheLeaderArmRequest) {
 
 TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const CartesianPose target = forward_kinematics({0.2, 0.6, -0.8, 0.1, 0.3, 0.2}, DhVariant::kOffset);
   nlohmann::json args = to_json(target);
   ASSERT_TRUE(driver_.call("enable", nullptr));
@@ -575,7 +575,7 @@ TEST_F(PiperDriverTest, EndPoseMovesTheArmAndSessionsComeFirst) {
 // again, so enabling the arm holds it where it is.
 TEST_F(PiperDriverTest, DisableIsDecidedAtTheTickAndNeverDropsAJointRobotdHolds) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const auto enabled_joints = [&] {
     const nlohmann::json state = sim_.control({{"op", "state"}});
     int count = 0;
@@ -592,7 +592,7 @@ TEST_F(PiperDriverTest, DisableIsDecidedAtTheTickAndNeverDropsAJointRobotdHolds)
     EXPECT_NE(disabled.error().message.find(why), std::string::npos) << disabled.error().message;
   };
   driver::CommandFrame estop;
-  estop.joint_count = kDeviceJoints;
+  estop.joint_count = kPiperDeviceJoints;
   estop.estop = true;
   loop.set_command(estop);
   std::this_thread::sleep_for(20ms);
@@ -606,7 +606,7 @@ TEST_F(PiperDriverTest, DisableIsDecidedAtTheTickAndNeverDropsAJointRobotdHolds)
   EXPECT_EQ(enabled_joints(), 6);
 
   driver::CommandFrame let_go;  // released with ZERO_TORQUE: nothing holds the arm
-  let_go.joint_count = kDeviceJoints;
+  let_go.joint_count = kPiperDeviceJoints;
   for (std::size_t j = 0; j < 6; ++j) let_go.joints[j].kind = JointCommandKind::kImpedance;
   loop.set_command(let_go);
   std::this_thread::sleep_for(20ms);
@@ -629,7 +629,7 @@ TEST_F(PiperDriverTest, DisableIsDecidedAtTheTickAndNeverDropsAJointRobotdHolds)
 
 TEST_F(PiperDriverTest, GripperFollowsItsJointAndItsOp) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   driver::CommandFrame frame = positions({0, 0, 0, 0, 0, 0});
   frame.joints[6] = {.kind = JointCommandKind::kPosition, .owned = true, .position_rad = 0.03};
   loop.set_command(frame);

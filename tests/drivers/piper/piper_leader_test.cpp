@@ -20,7 +20,7 @@ using driver::IoResult;
 using testing::DriverLoop;
 using testing::PiperSimProcess;
 
-constexpr std::size_t kDeviceJoints = 7;  // six arm joints and the gripper
+using testing::kPiperDeviceJoints;
 
 nlohmann::json params(const std::string& bus_path, const nlohmann::json& extra = nlohmann::json::object()) {
   nlohmann::json params{{"can", {{"transport", "standin"}, {"path", bus_path}}}, {"feedback_timeout_ms", 100}};
@@ -45,9 +45,9 @@ class PiperLeaderTest : public ::testing::Test {
 TEST_F(PiperLeaderTest, JointStatesFollowTheLeaderAndNothingIsSentToIt) {
   ASSERT_TRUE(driver_.connect());
   ASSERT_TRUE(sim_.control({{"op", "reset_counters"}})["ok"].get<bool>());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   const std::array<double, 6> commanded{0.1, 0.2, -0.3, 0.1, 0.1, 0.1};
-  loop.set_command(testing::position_frame(commanded, true, kDeviceJoints));
+  loop.set_command(testing::position_frame(commanded, true, kPiperDeviceJoints));
   ASSERT_TRUE(sim_.control({{"op", "set_joint"}, {"joint", 2}, {"position_rad", 0.8}})["ok"].get<bool>());
   ASSERT_TRUE(sim_.control({{"op", "set_joint"}, {"joint", 3}, {"position_rad", -1.1}})["ok"].get<bool>());
   ASSERT_TRUE(sim_.control({{"op", "set_gripper"}, {"stroke_m", 0.03}})["ok"].get<bool>());
@@ -70,7 +70,7 @@ TEST_F(PiperLeaderTest, JointStatesFollowTheLeaderAndNothingIsSentToIt) {
 
 TEST_F(PiperLeaderTest, ALeaderThatStopsSendingIsALostLinkAndRecoverWaitsForIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   ASSERT_TRUE(loop.wait_for([](DriverLoop& l) { return l.last_read() == IoResult::kOk; }));
   const auto silent_until = std::chrono::steady_clock::now() + 1500ms;
   ASSERT_TRUE(sim_.control({{"op", "silence"}, {"ms", 1500}})["ok"].get<bool>());
@@ -87,7 +87,7 @@ TEST_F(PiperLeaderTest, ALeaderThatStopsSendingIsALostLinkAndRecoverWaitsForIt) 
 // frames runs, and master_slave (the way back to a follower) goes out.
 TEST_F(PiperLeaderTest, ALeaderIsReadOnlyAndRefusesWhatWouldMoveOrConfigureIt) {
   ASSERT_TRUE(driver_.connect());
-  DriverLoop loop(driver_, kDeviceJoints);
+  DriverLoop loop(driver_, kPiperDeviceJoints);
   EXPECT_TRUE(contains(driver_.describe().read_only_reason, "leader arm")) << driver_.describe().read_only_reason;
   EXPECT_FALSE(driver_.describe().supports_torque);
   for (const auto& [op, args] :
@@ -166,9 +166,9 @@ TEST(PiperIdOffsets, ADriverWithTheArmsOffsetsDrivesIt) {
   PiperDriver driver;
   ASSERT_TRUE(driver.configure(params(sim.bus_path(), {{"feedback_id_offset", 16}, {"control_id_offset", 16}})));
   ASSERT_TRUE(driver.connect());
-  DriverLoop loop(driver, kDeviceJoints);
+  DriverLoop loop(driver, kPiperDeviceJoints);
   const std::array<double, 6> target{0.0, 0.5, -0.4, 0.0, 0.0, 0.0};
-  loop.set_command(testing::position_frame(target, true, kDeviceJoints));
+  loop.set_command(testing::position_frame(target, true, kPiperDeviceJoints));
   EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return testing::joints_near(l.feedback(), target, 0.002); }))
       << "joint2 " << loop.feedback().joints[1].position_rad;
   const nlohmann::json state = sim.control({{"op", "state"}});
