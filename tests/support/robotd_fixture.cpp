@@ -1,6 +1,7 @@
 #include "robotd_fixture.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -33,9 +34,21 @@ Client RobotdTest::make_client(const std::string& node_name) {
 }
 
 DeviceStatus RobotdTest::device_status(const std::string& device) {
-  auto status = client_->next_device_status(device, std::chrono::seconds(3));
-  EXPECT_TRUE(status) << status.error().message;
-  return status ? status.value() : DeviceStatus{};
+  // A sample robotd wrote after this call: a reader that has just matched may still be handed one
+  // written before it (seen under load), and counters read from it would seem to go back.
+  const std::int64_t asked_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  for (;;) {
+    auto status = client_->next_device_status(device, std::chrono::seconds(3));
+    EXPECT_TRUE(status) << status.error().message;
+    if (!status) return DeviceStatus{};
+    if (status.value().header.stamp.to_ns() >= asked_ns) return status.value();
+    if (std::chrono::steady_clock::now() > deadline) {
+      ADD_FAILURE() << "no /device_status sample of '" << device << "' written after it was asked for";
+      return status.value();
+    }
+  }
 }
 
 double max_error(const JointState& state, const std::vector<float>& target) {
