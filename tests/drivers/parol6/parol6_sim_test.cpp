@@ -352,10 +352,13 @@ TEST_F(Parol6SimTest, JogRunsAtConstantSpeedWithoutARamp) {
   EXPECT_EQ(cycles[1].reply->speed_steps_s[1], -50000);
   double t_s = 0;
   for (std::size_t k = 2; k < cycles.size(); ++k) t_s += seconds_of(cycles[k].reply->timing_ticks);
+  // The average speed over the stream, within 10 %: a loaded host shifts when a reply's position
+  // is taken against its cycle time by a few per cent (4 % seen under ASan); a ramp from rest would
+  // show as a larger shortfall, and the replies' speeds above are exact.
   const double moved = cycles.back().reply->position_steps[5] - cycles[1].reply->position_steps[5];
-  EXPECT_NEAR(moved / t_s, -1500, 30);
+  EXPECT_NEAR(moved / t_s, -1500, 150);
   const double moved_j1 = cycles.back().reply->position_steps[0] - cycles[1].reply->position_steps[0];
-  EXPECT_NEAR(moved_j1 / t_s, 50000, 500);
+  EXPECT_NEAR(moved_j1 / t_s, 50000, 5000);
 }
 
 TEST_F(Parol6SimTest, TheLastCommandStaysInForceWithoutFrames) {
