@@ -33,6 +33,7 @@ std::optional<Enum> parse_enum(std::string_view text, const std::array<std::stri
 
 constexpr std::array<std::string_view, 3> kModeNames{"POSITION", "TORQUE", "MIXED"};
 constexpr std::array<std::string_view, 3> kBehaviorNames{"KEEP", "DAMPING", "ZERO_TORQUE"};
+constexpr std::array<std::string_view, 2> kLowRateActionNames{"WARN", "FALLBACK"};
 constexpr std::array<std::string_view, 6> kStateNames{"CONNECTING", "RUNNING",     "FAULT",
                                                       "ESTOP",      "MAINTENANCE", "STOPPED"};
 
@@ -62,12 +63,18 @@ bool is_valid(ControlMode mode) {
 bool is_valid(Behavior behavior) {
   return static_cast<std::int32_t>(behavior) >= 0 && static_cast<std::size_t>(behavior) < kBehaviorNames.size();
 }
+bool is_valid(LowRateAction action) {
+  return static_cast<std::int32_t>(action) >= 0 && static_cast<std::size_t>(action) < kLowRateActionNames.size();
+}
 
 std::string_view to_string(ControlMode mode) {
   return is_valid(mode) ? kModeNames[static_cast<std::size_t>(mode)] : "INVALID_MODE";
 }
 std::string_view to_string(Behavior behavior) {
   return is_valid(behavior) ? kBehaviorNames[static_cast<std::size_t>(behavior)] : "INVALID_BEHAVIOR";
+}
+std::string_view to_string(LowRateAction action) {
+  return is_valid(action) ? kLowRateActionNames[static_cast<std::size_t>(action)] : "INVALID_ACTION";
 }
 std::string_view to_string(DeviceState state) {
   const auto index = static_cast<std::size_t>(state);
@@ -78,6 +85,9 @@ std::optional<ControlMode> parse_control_mode(std::string_view text) {
   return parse_enum<ControlMode>(text, kModeNames);
 }
 std::optional<Behavior> parse_behavior(std::string_view text) { return parse_enum<Behavior>(text, kBehaviorNames); }
+std::optional<LowRateAction> parse_low_rate_action(std::string_view text) {
+  return parse_enum<LowRateAction>(text, kLowRateActionNames);
+}
 
 Time Time::from_ns(std::int64_t ns) {
   std::int64_t sec = ns / kNsPerSecond;

@@ -29,6 +29,8 @@ inline std::string data_topic(std::string_view ros_name) {
   if (ros_name.starts_with('/')) ros_name.remove_prefix(1);
   return "rt/" + std::string(ros_name);
 }
+/// A device's TickState topic: ROS name "/<device>/tick_state".
+inline std::string tick_state_topic(std::string_view device) { return "rt/" + std::string(device) + "/tick_state"; }
 inline std::string request_topic(std::string_view service) { return "rq/" + std::string(service) + "Request"; }
 inline std::string reply_topic(std::string_view service) { return "rr/" + std::string(service) + "Reply"; }
 

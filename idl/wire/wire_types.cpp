@@ -63,6 +63,15 @@ void session_info_to_c(const SessionInfo& in, robotd_msgs_msg_dds__SessionInfo_&
   out.commands_accepted = in.commands_accepted;
   out.policy_name = c_string(in.policy_name);
   out.policy_file_name = c_string(in.policy_file_name);
+  out.closed_loop = in.closed_loop;
+  out.ticks_to_answer = in.ticks_to_answer;
+  out.ticks_answered_in_time = in.ticks_answered_in_time;
+  out.ticks_answered_late = in.ticks_answered_late;
+  out.ticks_unanswered = in.ticks_unanswered;
+  out.command_success_rate = in.command_success_rate;
+  out.min_command_success_rate = in.min_command_success_rate;
+  out.on_low_success_rate = enum_to_c(in.on_low_success_rate);
+  out.success_rate_low = in.success_rate_low;
 }
 
 void surface_to_c(const SurfaceCounters& in, robotd_msgs_msg_dds__SurfaceCounters_& out, CArena& arena) {
@@ -102,6 +111,15 @@ SessionInfo session_info_from_c(const robotd_msgs_msg_dds__SessionInfo_& in) {
   out.commands_accepted = in.commands_accepted;
   out.policy_name = copy_string(in.policy_name);
   out.policy_file_name = copy_string(in.policy_file_name);
+  out.closed_loop = in.closed_loop;
+  out.ticks_to_answer = in.ticks_to_answer;
+  out.ticks_answered_in_time = in.ticks_answered_in_time;
+  out.ticks_answered_late = in.ticks_answered_late;
+  out.ticks_unanswered = in.ticks_unanswered;
+  out.command_success_rate = in.command_success_rate;
+  out.min_command_success_rate = in.min_command_success_rate;
+  out.on_low_success_rate = enum_from_c<LowRateAction>(in.on_low_success_rate);
+  out.success_rate_low = in.success_rate_low;
   return out;
 }
 
@@ -162,6 +180,7 @@ void Wire<ControlCommand>::to_c(const ControlCommand& in, C& out, CArena& /*aren
   view_sequence(out.torques, in.torques);
   out.device = c_string(in.device);
   out.sent_steady_ns = in.sent_steady_ns;
+  out.answers_tick = in.answers_tick;
 }
 
 ControlCommand Wire<ControlCommand>::from_c(const C& in) {
@@ -176,6 +195,49 @@ ControlCommand Wire<ControlCommand>::from_c(const C& in) {
   out.torques = copy_sequence<float>(in.torques);
   out.device = copy_string(in.device);
   out.sent_steady_ns = in.sent_steady_ns;
+  out.answers_tick = in.answers_tick;
+  return out;
+}
+
+const dds_topic_descriptor_t& Wire<TickState>::descriptor() { return robotd_msgs_msg_dds__TickState__desc; }
+
+void Wire<TickState>::to_c(const TickState& in, C& out, CArena& /*arena*/) {
+  header_to_c(in.header, out.header);
+  out.tick = in.tick;
+  out.deadline_steady_ns = in.deadline_steady_ns;
+  out.period_ns = in.period_ns;
+  out.state_ready_steady_ns = in.state_ready_steady_ns;
+  out.published_steady_ns = in.published_steady_ns;
+  out.state = static_cast<std::uint8_t>(in.state);
+  view_sequence(out.position, in.position);
+  view_sequence(out.velocity, in.velocity);
+  view_sequence(out.effort, in.effort);
+  out.has_imu = in.has_imu;
+  const Quaternion& q = in.imu_orientation;
+  out.imu_orientation = {q.x, q.y, q.z, q.w};
+  out.imu_angular_velocity = {in.imu_angular_velocity.x, in.imu_angular_velocity.y, in.imu_angular_velocity.z};
+  out.imu_linear_acceleration = {in.imu_linear_acceleration.x, in.imu_linear_acceleration.y,
+                                 in.imu_linear_acceleration.z};
+}
+
+TickState Wire<TickState>::from_c(const C& in) {
+  TickState out;
+  out.header = header_from_c(in.header);
+  out.tick = in.tick;
+  out.deadline_steady_ns = in.deadline_steady_ns;
+  out.period_ns = in.period_ns;
+  out.state_ready_steady_ns = in.state_ready_steady_ns;
+  out.published_steady_ns = in.published_steady_ns;
+  out.state = static_cast<DeviceState>(in.state);
+  out.position = copy_sequence<double>(in.position);
+  out.velocity = copy_sequence<double>(in.velocity);
+  out.effort = copy_sequence<double>(in.effort);
+  out.has_imu = in.has_imu;
+  const auto& q = in.imu_orientation;
+  out.imu_orientation = {q.x, q.y, q.z, q.w};
+  out.imu_angular_velocity = {in.imu_angular_velocity.x, in.imu_angular_velocity.y, in.imu_angular_velocity.z};
+  out.imu_linear_acceleration = {in.imu_linear_acceleration.x, in.imu_linear_acceleration.y,
+                                 in.imu_linear_acceleration.z};
   return out;
 }
 
@@ -330,7 +392,9 @@ void Wire<DeviceStatus>::to_c(const DeviceStatus& in, C& out, CArena& arena) {
               l.execution_p50_us,
               l.execution_p99_us,
               l.execution_max_us,
-              l.rt_heap_allocations};
+              l.rt_heap_allocations,
+              l.tick_deadline_steady_ns,
+              l.period_ns};
   const CommandCounters& c = in.commands;
   out.commands = {c.received,
                   c.accepted,
@@ -381,7 +445,9 @@ DeviceStatus Wire<DeviceStatus>::from_c(const C& in) {
                             l.execution_p50_us,
                             l.execution_p99_us,
                             l.execution_max_us,
-                            l.rt_heap_allocations};
+                            l.rt_heap_allocations,
+                            l.tick_deadline_steady_ns,
+                            l.period_ns};
   const auto& c = in.commands;
   out.commands = CommandCounters{c.received,
                                  c.accepted,
@@ -420,6 +486,8 @@ void Wire<RequestControlRequest>::to_c(const RequestControlRequest& in, C& out, 
   out.device = c_string(in.device);
   out.policy_name = c_string(in.policy_name);
   out.policy_file_name = c_string(in.policy_file_name);
+  out.min_command_success_rate = in.min_command_success_rate;
+  out.on_low_success_rate = enum_to_c(in.on_low_success_rate);
 }
 RequestControlRequest Wire<RequestControlRequest>::from_c(const C& in) {
   RequestControlRequest out;
@@ -433,6 +501,8 @@ RequestControlRequest Wire<RequestControlRequest>::from_c(const C& in) {
   out.device = copy_string(in.device);
   out.policy_name = copy_string(in.policy_name);
   out.policy_file_name = copy_string(in.policy_file_name);
+  out.min_command_success_rate = in.min_command_success_rate;
+  out.on_low_success_rate = enum_from_c<LowRateAction>(in.on_low_success_rate);
   return out;
 }
 

@@ -24,6 +24,7 @@ struct Wire;
 
 ROBOTD_WIRE_TYPE(ControlCommand, robotd_msgs_msg_dds__ControlCommand_);
 ROBOTD_WIRE_TYPE(JointState, sensor_msgs_msg_dds__JointState_);
+ROBOTD_WIRE_TYPE(TickState, robotd_msgs_msg_dds__TickState_);
 ROBOTD_WIRE_TYPE(Imu, sensor_msgs_msg_dds__Imu_);
 ROBOTD_WIRE_TYPE(PoseStamped, geometry_msgs_msg_dds__PoseStamped_);
 ROBOTD_WIRE_TYPE(Vector3, geometry_msgs_msg_dds__Vector3_);

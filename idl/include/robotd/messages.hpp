@@ -17,6 +17,10 @@ enum class ControlMode : std::int32_t { kPosition = 0, kTorque = 1, kMixed = 2 }
 /// What happens to a session's motors on timeout or release (default_behavior, release_mode).
 enum class Behavior : std::int32_t { kKeep = 0, kDamping = 1, kZeroTorque = 2 };
 
+/// What robotd does when a closed-loop session's command success rate falls below the minimum
+/// it asked for (RequestControl.on_low_success_rate).
+enum class LowRateAction : std::int32_t { kWarn = 0, kFallback = 1 };
+
 /// DeviceStatus.state.
 enum class DeviceState : std::uint8_t {
   kConnecting = 0,
@@ -31,9 +35,12 @@ std::string_view to_string(ControlMode mode);
 std::string_view to_string(Behavior behavior);
 std::string_view to_string(DeviceState state);
 std::optional<ControlMode> parse_control_mode(std::string_view text);  // "POSITION", "position", "0"
-std::optional<Behavior> parse_behavior(std::string_view text);         // "KEEP", "damping", "2"
+std::string_view to_string(LowRateAction action);
+std::optional<Behavior> parse_behavior(std::string_view text);              // "KEEP", "damping", "2"
+std::optional<LowRateAction> parse_low_rate_action(std::string_view text);  // "WARN", "fallback", "1"
 bool is_valid(ControlMode mode);
 bool is_valid(Behavior behavior);
+bool is_valid(LowRateAction action);
 
 struct Time {
   std::int32_t sec = 0;
@@ -58,6 +65,7 @@ struct ControlCommand {
   std::vector<float> torques;       // N·m
   std::string device;               // "" = the session's device
   std::int64_t sent_steady_ns = 0;  // sender's CLOCK_MONOTONIC at publish, 0 = unknown
+  std::uint64_t answers_tick = 0;   // the tick whose TickState this answers (closed loop), 0 = none
 };
 
 struct JointState {
@@ -86,6 +94,25 @@ struct Imu {
   Quaternion orientation;
   Vector3 angular_velocity;     // rad/s
   Vector3 linear_acceleration;  // m/s²
+};
+
+/// What one tick of a device's loop measured, published on /<device>/tick_state right after
+/// the tick. A closed-loop client answers it (ControlCommand.answers_tick = tick).
+struct TickState {
+  Header header;                           // stamp: the tick's deadline (CLOCK_REALTIME); frame_id = device
+  std::uint64_t tick = 0;                  // 1, 2, ...
+  std::int64_t deadline_steady_ns = 0;     // the tick's deadline, CLOCK_MONOTONIC
+  std::int64_t period_ns = 0;              // the next tick is due at deadline + period
+  std::int64_t state_ready_steady_ns = 0;  // the loop handed the state over (CLOCK_MONOTONIC)
+  std::int64_t published_steady_ns = 0;    // robotd wrote the sample (CLOCK_MONOTONIC)
+  DeviceState state = DeviceState::kConnecting;
+  std::vector<double> position;  // rad, one per joint
+  std::vector<double> velocity;  // rad/s
+  std::vector<double> effort;    // N·m
+  bool has_imu = false;
+  Quaternion imu_orientation;
+  Vector3 imu_angular_velocity;     // rad/s
+  Vector3 imu_linear_acceleration;  // m/s²
 };
 
 /// A game controller's state (robotd_msgs/Joy), the PI Plus /hightorque_joy field for field
@@ -122,7 +149,22 @@ struct SessionInfo {
   std::uint64_t commands_accepted = 0;
   std::string policy_name;  // as the session named them in RequestControl
   std::string policy_file_name;
+  // Closed loop (sessions that answer ticks): each tick whose state the session was to answer,
+  // since its first answer, is answered in time, late, or never.
+  bool closed_loop = false;
+  std::uint64_t ticks_to_answer = 0;
+  std::uint64_t ticks_answered_in_time = 0;
+  std::uint64_t ticks_answered_late = 0;
+  std::uint64_t ticks_unanswered = 0;
+  float command_success_rate = 0;      // in time / to answer over the last kSuccessRateWindowTicks (0..1)
+  float min_command_success_rate = 0;  // 0 = none
+  LowRateAction on_low_success_rate = LowRateAction::kWarn;
+  bool success_rate_low = false;  // below the minimum now
 };
+
+/// The ticks SessionInfo.command_success_rate covers (libfranka's control_command_success_rate
+/// covers its last 100 commands likewise).
+inline constexpr std::uint32_t kSuccessRateWindowTicks = 100;
 
 /// One service's requests as robotd's DDS surface saw them.
 struct ServiceCounters {
@@ -164,7 +206,9 @@ struct LoopStatistics {
   float period_p50_us = 0, period_p99_us = 0, period_max_us = 0;
   float wake_latency_p50_us = 0, wake_latency_p99_us = 0, wake_latency_max_us = 0;
   float execution_p50_us = 0, execution_p99_us = 0, execution_max_us = 0;
-  std::int64_t rt_heap_allocations = -1;  // -1 = not measured (no allocation probe loaded)
+  std::int64_t rt_heap_allocations = -1;     // -1 = not measured (no allocation probe loaded)
+  std::int64_t tick_deadline_steady_ns = 0;  // a recent tick's deadline: ticks are due at it + n × period_ns
+  std::int64_t period_ns = 0;
 };
 
 struct CommandCounters {
@@ -237,6 +281,10 @@ struct RequestControlRequest {
   // Who will command, shown in /session_status: e.g. "walk" and "walk_v3.onnx" ("" = none).
   std::string policy_name;
   std::string policy_file_name;
+  // Closed loop: the least fraction of ticks answered in time (0..1, 0 = none) over the last
+  // kSuccessRateWindowTicks, and what robotd does below it.
+  float min_command_success_rate = 0;
+  LowRateAction on_low_success_rate = LowRateAction::kWarn;
 };
 struct RequestControlResponse {
   bool success = false;
