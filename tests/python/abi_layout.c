@@ -29,12 +29,14 @@ int main(void) {
           FIELD(robotd_device_info, joint_names), FIELD(robotd_device_info, position_min),
           FIELD(robotd_device_info, position_max), FIELD(robotd_device_info, velocity_max),
           FIELD(robotd_device_info, effort_max)));
-  STRUCT(robotd_session_request, (FIELD(robotd_session_request, device), FIELD(robotd_session_request, motor_ids),
-                                  FIELD(robotd_session_request, motor_count), FIELD(robotd_session_request, mode),
-                                  FIELD(robotd_session_request, on_timeout), FIELD(robotd_session_request, timeout_ms),
-                                  FIELD(robotd_session_request, default_kp), FIELD(robotd_session_request, default_kd),
-                                  FIELD(robotd_session_request, on_release), FIELD(robotd_session_request, policy_name),
-                                  FIELD(robotd_session_request, policy_file_name)));
+  STRUCT(robotd_session_request,
+         (FIELD(robotd_session_request, device), FIELD(robotd_session_request, motor_ids),
+          FIELD(robotd_session_request, motor_count), FIELD(robotd_session_request, mode),
+          FIELD(robotd_session_request, on_timeout), FIELD(robotd_session_request, timeout_ms),
+          FIELD(robotd_session_request, default_kp), FIELD(robotd_session_request, default_kd),
+          FIELD(robotd_session_request, on_release), FIELD(robotd_session_request, policy_name),
+          FIELD(robotd_session_request, policy_file_name), FIELD(robotd_session_request, closed_loop),
+          FIELD(robotd_session_request, min_command_success_rate), FIELD(robotd_session_request, on_low_success_rate)));
   STRUCT(robotd_command, (FIELD(robotd_command, motor_ids), FIELD(robotd_command, count),
                           FIELD(robotd_command, positions), FIELD(robotd_command, velocities),
                           FIELD(robotd_command, kp), FIELD(robotd_command, kd), FIELD(robotd_command, torques)));
@@ -50,6 +52,22 @@ int main(void) {
        FIELD(robotd_device_status, loop_period_p50_us), FIELD(robotd_device_status, loop_period_p99_us),
        FIELD(robotd_device_status, loop_period_max_us), FIELD(robotd_device_status, loop_overruns),
        FIELD(robotd_device_status, commands_accepted), FIELD(robotd_device_status, commands_rejected)));
+  STRUCT(robotd_tick_state,
+         (FIELD(robotd_tick_state, device), FIELD(robotd_tick_state, tick), FIELD(robotd_tick_state, stamp_ns),
+          FIELD(robotd_tick_state, deadline_steady_ns), FIELD(robotd_tick_state, period_ns),
+          FIELD(robotd_tick_state, state_ready_steady_ns), FIELD(robotd_tick_state, published_steady_ns),
+          FIELD(robotd_tick_state, state), FIELD(robotd_tick_state, joint_count), FIELD(robotd_tick_state, position),
+          FIELD(robotd_tick_state, velocity), FIELD(robotd_tick_state, effort), FIELD(robotd_tick_state, has_imu),
+          FIELD(robotd_tick_state, imu_orientation), FIELD(robotd_tick_state, imu_angular_velocity),
+          FIELD(robotd_tick_state, imu_linear_acceleration)));
+  STRUCT(robotd_session_info,
+         (FIELD(robotd_session_info, session_id), FIELD(robotd_session_info, node_name),
+          FIELD(robotd_session_info, device), FIELD(robotd_session_info, commands_accepted),
+          FIELD(robotd_session_info, closed_loop), FIELD(robotd_session_info, ticks_to_answer),
+          FIELD(robotd_session_info, ticks_answered_in_time), FIELD(robotd_session_info, ticks_answered_late),
+          FIELD(robotd_session_info, ticks_unanswered), FIELD(robotd_session_info, command_success_rate),
+          FIELD(robotd_session_info, min_command_success_rate), FIELD(robotd_session_info, on_low_success_rate),
+          FIELD(robotd_session_info, success_rate_low)));
   printf("}\n");
   return 0;
 }

@@ -30,7 +30,8 @@ class AbiLayoutTest(unittest.TestCase):
         mirrors = {"robotd_client_options": _native.ClientOptions, "robotd_device_info": _native.DeviceInfoStruct,
                    "robotd_session_request": _native.SessionRequest, "robotd_command": _native.Command,
                    "robotd_joint_state": _native.JointStateStruct,
-                   "robotd_device_status": _native.DeviceStatusStruct}
+                   "robotd_device_status": _native.DeviceStatusStruct, "robotd_tick_state": _native.TickStateStruct,
+                   "robotd_session_info": _native.SessionInfoStruct}
         self.assertEqual(set(layout), set(mirrors))
         for name, mirror in mirrors.items():
             with self.subTest(struct=name):
@@ -43,7 +44,7 @@ class WithoutRobotdTest(unittest.TestCase):
     """What a caller gets before anything reaches robotd."""
 
     def test_versions(self):
-        self.assertEqual(robotd.C_API_VERSION, 3)
+        self.assertEqual(robotd.C_API_VERSION, 4)
         self.assertRegex(robotd.__version__, r"^\d+\.\d+\.\d+$")
 
     def test_no_robotd_on_the_domain_is_not_available_and_says_what_to_check(self):
@@ -226,6 +227,62 @@ class ClientTest(unittest.TestCase):
             held.close()
 
 
+class ClosedLoopTest(unittest.TestCase):
+    """session.ticks() and session.answer() through a real robotd: a PD law closes the loop."""
+
+    def test_a_pd_law_gets_newer_ticks_and_its_answers_move_the_arm_and_are_counted(self):
+        with RobotdDaemon(ROBOTD, [sim_arm()]) as daemon, \
+                robotd.Client(daemon.domain_id, node_name="python_test") as client:
+            daemon.wait_until_serving()
+            with client.session(device="arm", mode="torque", timeout=2.0, on_release="damping", closed_loop=True,
+                                min_command_success_rate=0.5, on_low_success_rate="warn") as session:
+                reference, ticks, settled = None, [], False
+                for state in session.ticks(duration=30.0, state_timeout=5.0):
+                    if reference is None:
+                        reference = [q + 0.3 for q in state.position]
+                    ticks.append(state.tick)
+                    session.answer(state, torques=[20.0 * (r - q) - 1.0 * dq for r, q, dq in
+                                                   zip(reference, state.position, state.velocity)])
+                    errors = [abs(r - q) for r, q in zip(reference, state.position)]
+                    if len(ticks) > 200 and max(errors) < 0.01 and abs(state.velocity[0]) < 0.05:
+                        settled = True
+                        break
+                consecutive = sum(1 for a, b in zip(ticks, ticks[1:]) if b == a + 1)
+                print(f"[ measured ] {len(ticks)} ticks, {consecutive} the one after the previous", file=sys.stderr)
+                # Only the PD law's torques, answering the ticks, brought every joint to its reference.
+                self.assertTrue(settled, daemon.log())
+                self.assertEqual(ticks, sorted(set(ticks)))
+                self.assertGreater(consecutive, 0)
+                deadline = time.monotonic() + 10
+                info = session.info()
+                while info.ticks_answered_in_time + info.ticks_answered_late == 0 and time.monotonic() < deadline:
+                    time.sleep(0.1)
+                    info = session.info()
+                self.assertTrue(info.closed_loop)
+                self.assertGreater(info.ticks_answered_in_time + info.ticks_answered_late, 0)
+                self.assertAlmostEqual(info.min_command_success_rate, 0.5)
+                self.assertEqual(info.on_low_success_rate, robotd.LowRateAction.WARN)
+
+    def test_ticks_end_when_robotd_ends_the_session(self):
+        with RobotdDaemon(ROBOTD, [sim_arm()]) as daemon, \
+                robotd.Client(daemon.domain_id, node_name="python_test") as client:
+            daemon.wait_until_serving()
+            with client.session(device="arm", mode="torque", timeout=0.5, closed_loop=True) as session:
+                deadline = time.monotonic() + 10
+                while time.monotonic() < deadline:  # kept alive until robotd is seen listing it
+                    session.keepalive()
+                    try:
+                        session.info(timeout=0.1)
+                        break
+                    except robotd.Timeout:
+                        pass
+                # Not answered: robotd's 500 ms timeout ends the session, and with it the loop.
+                count = sum(1 for _ in session.ticks(duration=30.0, state_timeout=5.0))
+                self.assertGreater(count, 0)
+                with self.assertRaises(robotd.Refused):
+                    session.next_tick(timeout=1.0)
+
+
 class ExampleTest(unittest.TestCase):
     """clients/python/examples/move_arm.py, the Python twin of the C++ example, against robotd."""
 
@@ -242,6 +299,21 @@ class ExampleTest(unittest.TestCase):
         self.assertEqual(len(moves), 6, result.stdout)
         self.assertTrue(all(abs(position - 0.5) < 0.02 for position in moves), result.stdout)
         self.assertIn("released", result.stdout)
+
+    def test_the_pd_example_brings_every_joint_to_its_reference(self):
+        example = Path(os.environ["ROBOTD_PYTHON_EXAMPLE"]).with_name("pd_control.py")
+        with RobotdDaemon(ROBOTD, [sim_arm()]) as daemon:
+            daemon.wait_until_serving()
+            result = subprocess.run([sys.executable, str(example)], capture_output=True, text=True, timeout=60,
+                                    env=dict(os.environ, ROBOTD_DOMAIN_ID=str(daemon.domain_id)))
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr + daemon.log())
+        self.assertRegex(result.stdout, r"\d+ ticks answered \(ticks \d+\.\.\d+, \d+ skipped\)")
+        joints = [line for line in result.stdout.splitlines() if line.startswith("joint ")]
+        self.assertEqual(len(joints), 6, result.stdout)
+        for line in joints:
+            position, reference = float(line.split()[2]), float(line.split("reference ")[1].rstrip(")"))
+            self.assertAlmostEqual(position, reference, delta=0.02, msg=result.stdout)
+        self.assertIn("ticks answered in time (command success rate", result.stdout)
 
 
 if __name__ == "__main__":

@@ -15,7 +15,8 @@ import importlib
 _EXPORTS = {
     "C_API_VERSION": "._native",
     "Behavior": ".types", "DeviceInfo": ".types", "DeviceState": ".types", "DeviceStatus": ".types",
-    "JointState": ".types", "Mode": ".types",
+    "JointState": ".types", "LowRateAction": ".types", "Mode": ".types", "SessionInfo": ".types",
+    "TickState": ".types",
     "Client": ".client",
     "Session": ".session",
     "Subscription": ".subscription",

@@ -6,9 +6,9 @@ from ctypes import POINTER, Structure, c_bool, c_char, c_char_p, c_double, c_flo
 from ctypes import c_size_t, c_uint64, c_void_p
 
 from . import errors
-from .types import DeviceInfo, DeviceState, DeviceStatus, JointState
+from .types import DeviceInfo, DeviceState, DeviceStatus, JointState, LowRateAction, SessionInfo, TickState
 
-C_API_VERSION = 3  # the robotd/robotd.h this module mirrors
+C_API_VERSION = 4  # the robotd/robotd.h this module mirrors
 MAX_JOINTS = 64
 NAME_CAPACITY = 64
 UUID_CAPACITY = 40
@@ -36,7 +36,8 @@ class SessionRequest(Structure):
     _fields_ = [("device", c_char_p), ("motor_ids", POINTER(c_int32)), ("motor_count", c_size_t), ("mode", _Enum),
                 ("on_timeout", _Enum), ("timeout_ms", c_int32), ("default_kp", POINTER(c_float)),
                 ("default_kd", POINTER(c_float)), ("on_release", _Enum), ("policy_name", c_char_p),
-                ("policy_file_name", c_char_p)]
+                ("policy_file_name", c_char_p), ("closed_loop", c_bool), ("min_command_success_rate", c_float),
+                ("on_low_success_rate", _Enum)]
 
 
 class Command(Structure):
@@ -55,6 +56,23 @@ class DeviceStatusStruct(Structure):
                 ("fault_code", c_int32), ("fault_text", _Text), ("estop_engaged", c_bool),
                 ("loop_period_p50_us", c_float), ("loop_period_p99_us", c_float), ("loop_period_max_us", c_float),
                 ("loop_overruns", c_uint64), ("commands_accepted", c_uint64), ("commands_rejected", c_uint64)]
+
+
+class TickStateStruct(Structure):
+    _fields_ = [("device", _Name), ("tick", c_uint64), ("stamp_ns", c_int64), ("deadline_steady_ns", c_int64),
+                ("period_ns", c_int64), ("state_ready_steady_ns", c_int64), ("published_steady_ns", c_int64),
+                ("state", _Enum), ("joint_count", c_size_t), ("position", _Doubles), ("velocity", _Doubles),
+                ("effort", _Doubles), ("has_imu", c_bool), ("imu_orientation", c_double * 4),
+                ("imu_angular_velocity", c_double * 3), ("imu_linear_acceleration", c_double * 3)]
+
+
+class SessionInfoStruct(Structure):
+    _fields_ = [("session_id", c_char * UUID_CAPACITY), ("node_name", _Name), ("device", _Name),
+                ("commands_accepted", c_uint64), ("closed_loop", c_bool), ("ticks_to_answer", c_uint64),
+                ("ticks_answered_in_time", c_uint64), ("ticks_answered_late", c_uint64),
+                ("ticks_unanswered", c_uint64), ("command_success_rate", c_float),
+                ("min_command_success_rate", c_float), ("on_low_success_rate", _Enum),
+                ("success_rate_low", c_bool)]
 
 
 JointStateCallback = ctypes.CFUNCTYPE(None, POINTER(JointStateStruct), c_void_p)
@@ -85,6 +103,10 @@ _PROTOTYPES = {
     "robotd_session_free": (None, [_Handle]),
     "robotd_send_command": (_Status, [_Handle, POINTER(Command)]),
     "robotd_keepalive": (_Status, [_Handle]),
+    "robotd_session_next_tick": (_Status, [_Handle, c_int32, POINTER(TickStateStruct)]),
+    "robotd_session_answer": (_Status, [_Handle, POINTER(TickStateStruct), POINTER(Command)]),
+    "robotd_session_send_aligned": (_Status, [_Handle, POINTER(Command), c_int32]),
+    "robotd_session_get_info": (_Status, [_Handle, c_int32, POINTER(SessionInfoStruct)]),
     "robotd_next_joint_state": (_Status, [_Handle, c_char_p, c_int32, POINTER(JointStateStruct)]),
     "robotd_next_device_status": (_Status, [_Handle, c_char_p, c_int32, POINTER(DeviceStatusStruct)]),
     "robotd_subscribe_joint_states": (_Status, [_Handle, JointStateCallback, c_void_p, POINTER(_Handle)]),
@@ -226,3 +248,33 @@ def device_status(raw):
                         loop_period_max_us=raw.loop_period_max_us, loop_overruns=raw.loop_overruns,
                         commands_accepted=raw.commands_accepted, commands_rejected=raw.commands_rejected)
 
+
+
+def tick_state(raw):
+    count = raw.joint_count
+    imu = (tuple(raw.imu_orientation), tuple(raw.imu_angular_velocity),
+           tuple(raw.imu_linear_acceleration)) if raw.has_imu else None
+    return TickState(device=text(raw.device), tick=raw.tick, stamp_ns=raw.stamp_ns,
+                     deadline_steady_ns=raw.deadline_steady_ns, period_ns=raw.period_ns,
+                     state_ready_steady_ns=raw.state_ready_steady_ns, published_steady_ns=raw.published_steady_ns,
+                     state=DeviceState(raw.state), position=_vector(raw.position, count),
+                     velocity=_vector(raw.velocity, count), effort=_vector(raw.effort, count), imu=imu)
+
+
+def tick_reference(state):
+    """What robotd_session_answer reads of a TickState: its device and tick."""
+    raw = TickStateStruct()
+    raw.device = state.device.encode("utf-8")[:NAME_CAPACITY - 1]
+    raw.tick = state.tick
+    return raw
+
+
+def session_info(raw):
+    return SessionInfo(session_id=text(raw.session_id), node_name=text(raw.node_name), device=text(raw.device),
+                       commands_accepted=raw.commands_accepted, closed_loop=bool(raw.closed_loop),
+                       ticks_to_answer=raw.ticks_to_answer, ticks_answered_in_time=raw.ticks_answered_in_time,
+                       ticks_answered_late=raw.ticks_answered_late, ticks_unanswered=raw.ticks_unanswered,
+                       command_success_rate=raw.command_success_rate,
+                       min_command_success_rate=raw.min_command_success_rate,
+                       on_low_success_rate=LowRateAction(raw.on_low_success_rate),
+                       success_rate_low=bool(raw.success_rate_low))

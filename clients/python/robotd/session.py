@@ -1,10 +1,12 @@
 """An exclusive control session on some motors of one device."""
+import time
 from ctypes import byref, c_char_p, c_float, c_int, c_int32, c_size_t, c_void_p
 
 from . import _native
 from ._native import check, floats, int32s, lib, milliseconds, optional_text, pointer
 from .client import Client
-from .types import Behavior, Mode
+from .errors import Refused
+from .types import Behavior, LowRateAction, Mode
 
 
 class Session:
@@ -19,22 +21,29 @@ class Session:
     `policy` and `policy_file` name who commands (e.g. "walk", "walk_v3.onnx"); /session_status
     shows them to everyone.
 
+    Closed loop (ticks(), answer()): `closed_loop` makes the session read its device's tick states
+    from the grant on (else from the first ticks() / next_tick(), whose first wait then includes
+    DDS discovery); `min_command_success_rate` (0..1, 0 = none) is the least fraction of ticks it
+    must answer in time, and `on_low_success_rate` ("warn" or "fallback") what robotd does below it.
+
     Without `client`, the session connects a Client of its own (from the environment) and closes
     it with the session. Raises Refused, naming the holder, when another session has a motor."""
 
     def __init__(self, device=None, motors=None, *, mode=Mode.POSITION, on_timeout=Behavior.DAMPING, timeout=1.0,
-                 kp=None, kd=None, on_release=Behavior.KEEP, policy=None, policy_file=None, client=None):
+                 kp=None, kd=None, on_release=Behavior.KEEP, policy=None, policy_file=None, closed_loop=False,
+                 min_command_success_rate=0.0, on_low_success_rate=LowRateAction.WARN, client=None):
         self._handle = None
         self._own_client = client is None
         self._client = Client() if client is None else client
         try:
             self._request(device, motors, Mode.parse(mode), Behavior.parse(on_timeout), timeout, kp, kd,
-                          Behavior.parse(on_release), (policy, policy_file))
+                          Behavior.parse(on_release), (policy, policy_file),
+                          (closed_loop, min_command_success_rate, LowRateAction.parse(on_low_success_rate)))
         except BaseException:
             self._close_own_client()
             raise
 
-    def _request(self, device, motors, mode, on_timeout, timeout, kp, kd, on_release, policy):
+    def _request(self, device, motors, mode, on_timeout, timeout, kp, kd, on_release, policy, closed_loop):
         request = _native.SessionRequest()
         check(lib.robotd_session_request_init(byref(request)))
         device_text = optional_text(device)
@@ -50,6 +59,7 @@ class Session:
         request.default_kp, request.default_kd = (pointer(gain, c_float) for gain in gains)
         request.on_release = on_release
         request.policy_name, request.policy_file_name = (optional_text(text) for text in policy)
+        request.closed_loop, request.min_command_success_rate, request.on_low_success_rate = closed_loop
         handle = c_void_p()
         check(lib.robotd_request_control(self._client.handle, byref(request), byref(handle)))
         self._handle = handle
@@ -84,6 +94,12 @@ class Session:
         order, or per entry of `motors`. What a mode needs: POSITION positions; TORQUE torques;
         MIXED positions, kp, kd and torques. Raises only on malformed input or a released session;
         robotd's verdict shows in Client.device_status()'s counters."""
+        command, _arrays = self._command(positions, velocities, kp, kd, torques, motors)
+        check(lib.robotd_send_command(self._live_handle(), byref(command)))
+
+    def _command(self, positions, velocities, kp, kd, torques, motors):
+        """The C command for these values (see command()), and the arrays its pointers point into:
+        keep them until the call it is passed to returns."""
         motor_ids = int32s(motors, "motors")
         count = len(motor_ids) if motor_ids is not None else len(self.motors)
         arrays = {name: floats(values, name, count) for name, values in
@@ -92,7 +108,58 @@ class Session:
         command = _native.Command(motor_ids=pointer(motor_ids, c_int32),
                                   count=len(motor_ids) if motor_ids is not None else 0,
                                   **{name: pointer(array, c_float) for name, array in arrays.items()})
-        check(lib.robotd_send_command(self._live_handle(), byref(command)))
+        return command, (motor_ids, arrays)
+
+    def next_tick(self, timeout=1.0):
+        """The newest TickState of the session's device newer than the last one returned, waited
+        for up to `timeout` seconds (Timeout). Raises Refused once robotd no longer lists the
+        session (it timed out, fell back or was released)."""
+        raw = _native.TickStateStruct()
+        check(lib.robotd_session_next_tick(self._live_handle(), milliseconds(timeout, "timeout"), byref(raw)))
+        return _native.tick_state(raw)
+
+    def ticks(self, duration=None, state_timeout=0.2):
+        """Each new TickState of the session's device, for a control loop:
+
+            for state in session.ticks():
+                session.answer(state, torques=[kp * (r - q) - kd * v for r, q, v in
+                                               zip(reference, state.position, state.velocity)])
+
+        Ends after `duration` seconds (None: no limit), or when robotd ends the session; break out
+        of the loop to stop. Raises Timeout when no new tick comes within `state_timeout` seconds
+        (the device stopped ticking or faulted, or robotd stopped). A tick the loop was too slow for
+        is skipped: each state is the newest."""
+        start = time.monotonic()
+        while self._handle is not None and (duration is None or time.monotonic() - start < duration):
+            try:
+                yield self.next_tick(state_timeout)
+            except Refused:
+                return  # robotd no longer lists the session: its loop is over
+
+    def answer(self, state, positions=None, velocities=None, kp=None, kd=None, torques=None, *, motors=None):
+        """Sends a command (as command() does) as the answer to `state`, a TickState of ticks()
+        or next_tick(). robotd counts it in time when it arrives before the device's next state."""
+        command, _arrays = self._command(positions, velocities, kp, kd, torques, motors)
+        tick = _native.tick_reference(state)
+        check(lib.robotd_session_answer(self._live_handle(), byref(tick), byref(command)))
+
+    def send_aligned(self, positions=None, velocities=None, kp=None, kd=None, torques=None, *, motors=None,
+                     lead=None):
+        """Sends a command `lead` seconds (None: the library's default, 200 µs) before the device's
+        next tick is due, sleeping until then: open-loop streaming whose commands wait in robotd
+        for about `lead` instead of up to a period."""
+        if lead is not None and lead < 0:
+            raise ValueError(f"lead is a duration in seconds, >= 0 (got {lead!r})")
+        lead_us = -1 if lead is None else int(round(lead * 1e6))
+        command, _arrays = self._command(positions, velocities, kp, kd, torques, motors)
+        check(lib.robotd_session_send_aligned(self._live_handle(), byref(command), lead_us))
+
+    def info(self, timeout=2.0):
+        """The session's SessionInfo as robotd last published it in /session_status (its command
+        success rate and answer counts), waiting up to `timeout` seconds for the first one."""
+        raw = _native.SessionInfoStruct()
+        check(lib.robotd_session_get_info(self._live_handle(), milliseconds(timeout, "timeout"), byref(raw)))
+        return _native.session_info(raw)
 
     def keepalive(self):
         """Renews the session without moving anything."""
@@ -132,3 +199,4 @@ class Session:
     def __repr__(self):
         return (f"Session({self.device!r}, motors={list(self.motors)}, mode={self.mode.name}, "
                 f"session_id={self.session_id!r})")
+

@@ -38,6 +38,12 @@ class Behavior(_ParsedEnum):
     ZERO_TORQUE = 2  # let go
 
 
+class LowRateAction(_ParsedEnum):
+    """What robotd does when a closed-loop session's command success rate falls below its minimum."""
+    WARN = 0  # log it and flag it in /session_status (success_rate_low)
+    FALLBACK = 1  # end the session with its on_timeout behavior, as on timeout
+
+
 class DeviceState(_ParsedEnum):
     CONNECTING = 0
     RUNNING = 1
@@ -89,3 +95,41 @@ class DeviceStatus:
     loop_overruns: int  # ticks missed since robotd started
     commands_accepted: int
     commands_rejected: int  # every reason
+
+
+@dataclass(frozen=True)
+class TickState:
+    """What one tick of a device's loop measured (/<device>/tick_state). A closed-loop session
+    answers it (Session.answer); robotd counts the answer in time when it arrives before the
+    device's next state is measured."""
+    device: str
+    tick: int  # 1, 2, ...
+    stamp_ns: int  # the tick's deadline, CLOCK_REALTIME
+    deadline_steady_ns: int  # the tick's deadline, CLOCK_MONOTONIC (time.monotonic_ns())
+    period_ns: int  # the next tick is due at deadline_steady_ns + period_ns
+    state_ready_steady_ns: int  # robotd's loop handed the state over
+    published_steady_ns: int  # robotd wrote the sample
+    state: DeviceState
+    position: tuple  # rad, in motor id order
+    velocity: tuple  # rad/s
+    effort: tuple  # N·m
+    imu: tuple  # None, or (orientation (x, y, z, w), angular velocity rad/s, linear acceleration m/s²)
+
+
+@dataclass(frozen=True)
+class SessionInfo:
+    """A session's entry in /session_status, with its closed-loop counters: each tick it was to
+    answer (since its first answer) was answered in time, late, or never."""
+    session_id: str
+    node_name: str
+    device: str
+    commands_accepted: int
+    closed_loop: bool  # the session has answered a tick
+    ticks_to_answer: int
+    ticks_answered_in_time: int
+    ticks_answered_late: int
+    ticks_unanswered: int
+    command_success_rate: float  # in time / to answer over the last 100 ticks to answer, 0..1
+    min_command_success_rate: float  # 0 = none
+    on_low_success_rate: LowRateAction
+    success_rate_low: bool  # below the minimum now
