@@ -32,7 +32,9 @@ Json to_json(const robotd::LoopStatistics& loop) {
               {"execution_p50_us", microseconds(loop.execution_p50_us)},
               {"execution_p99_us", microseconds(loop.execution_p99_us)},
               {"execution_max_us", microseconds(loop.execution_max_us)},
-              {"rt_heap_allocations", loop.rt_heap_allocations}};
+              {"rt_heap_allocations", loop.rt_heap_allocations},
+              {"tick_deadline_steady_ns", loop.tick_deadline_steady_ns},
+              {"period_ns", loop.period_ns}};
 }
 
 Json to_json(const robotd::CommandCounters& commands) {
@@ -64,7 +66,16 @@ Json to_json(const robotd::SessionInfo& session) {
               {"granted_at", to_json(session.granted_at)},
               {"commands_accepted", session.commands_accepted},
               {"policy_name", session.policy_name},
-              {"policy_file_name", session.policy_file_name}};
+              {"policy_file_name", session.policy_file_name},
+              {"closed_loop", session.closed_loop},
+              {"ticks_to_answer", session.ticks_to_answer},
+              {"ticks_answered_in_time", session.ticks_answered_in_time},
+              {"ticks_answered_late", session.ticks_answered_late},
+              {"ticks_unanswered", session.ticks_unanswered},
+              {"command_success_rate", session.command_success_rate},
+              {"min_command_success_rate", session.min_command_success_rate},
+              {"on_low_success_rate", robotd::to_string(session.on_low_success_rate)},
+              {"success_rate_low", session.success_rate_low}};
 }
 
 Json to_json(const robotd::SurfaceCounters& surface) {

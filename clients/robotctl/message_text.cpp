@@ -122,6 +122,25 @@ std::string policy_text(const robotd::SessionInfo& session) {
   return (session.policy_name.empty() ? "-" : session.policy_name) + " (" + session.policy_file_name + ")";
 }
 
+// A closed-loop session's answers: "98.0 % (in time 980, late 15, never 5; min 95.0 % WARN)",
+// "LOW" appended while its rate is below its minimum.
+std::string answers_text(const robotd::SessionInfo& session) {
+  std::string text = "-";
+  if (session.closed_loop) {
+    text = fixed(100.0 * session.command_success_rate, 1) + " % (in time " +
+           std::to_string(session.ticks_answered_in_time) + ", late " + std::to_string(session.ticks_answered_late) +
+           ", never " + std::to_string(session.ticks_unanswered);
+  }
+  if (session.min_command_success_rate > 0) {
+    text += std::string(session.closed_loop ? "; " : " (") + "min " +
+            fixed(100.0 * session.min_command_success_rate, 1) + " % " +
+            std::string(robotd::to_string(session.on_low_success_rate));
+  }
+  if (session.closed_loop || session.min_command_success_rate > 0) text += ")";
+  if (session.success_rate_low) text += " LOW";
+  return text;
+}
+
 }  // namespace
 
 std::string session_table(const robotd::SessionStatus& status) {
@@ -130,8 +149,13 @@ std::string session_table(const robotd::SessionStatus& status) {
   const bool policies = std::any_of(status.sessions.begin(), status.sessions.end(), [](const auto& session) {
     return !session.policy_name.empty() || !session.policy_file_name.empty();
   });
+  // The ANSWERS column (command success rate) only when a session closes the loop or asked for a minimum.
+  const bool closed_loop = std::any_of(status.sessions.begin(), status.sessions.end(), [](const auto& session) {
+    return session.closed_loop || session.min_command_success_rate > 0;
+  });
   std::vector<std::string> headers{"SESSION", "NODE",       "DEVICE",    "MOTORS",
                                    "MODE",    "ON TIMEOUT", "TIME LEFT", "COMMANDS"};
+  if (closed_loop) headers.emplace_back("ANSWERS IN TIME");
   if (policies) headers.emplace_back("POLICY");
   TextTable table(std::move(headers));
   for (const auto& session : status.sessions) {
@@ -143,6 +167,7 @@ std::string session_table(const robotd::SessionStatus& status) {
                                  behavior_text(session.default_behavior, session.applied_behavior),
                                  std::to_string(session.time_left_ms) + " ms",
                                  std::to_string(session.commands_accepted)};
+    if (closed_loop) row.push_back(answers_text(session));
     if (policies) row.push_back(policy_text(session));
     table.add_row(std::move(row));
   }

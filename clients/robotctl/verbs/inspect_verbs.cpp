@@ -31,7 +31,9 @@ Verb add_status_verb(CLI::App& app) {
   command->add_flag("--json", *json, "Print {\"devices\": [DeviceStatus...], \"sessions\": SessionStatus} as JSON");
   command->footer(
       "Per device: state, fault, e-stop, control-loop timing (wake latency, execution time, period, overruns), "
-      "commands received and accepted and every non-zero rejection by reason; then the active sessions; then what "
+      "commands received and accepted and every non-zero rejection by reason; then the active sessions (a closed-loop "
+      "session's command success rate: the share of its last 100 ticks answered in time, its answers in time, late "
+      "and never, and its minimum with what robotd does below it); then what "
       "robotd's DDS surface counted: commands that named no active session and no known device, each service's "
       "requests, refusals and oversized requests, and the DDS layer's warnings.\n\n"
       "Example:\n  robotctl status\n  robotctl status --json");
