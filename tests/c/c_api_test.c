@@ -21,6 +21,9 @@
 #ifndef EXAMPLE_MOVE_ARM_C
 #error "EXAMPLE_MOVE_ARM_C must point at the C example program"
 #endif
+#ifndef EXAMPLE_PD_CONTROL_C
+#error "EXAMPLE_PD_CONTROL_C must point at the C closed-loop example program"
+#endif
 
 typedef struct fixture {
   test_robotd robotd;
@@ -694,6 +697,154 @@ static bool example_program_moves_the_arm(fixture* f) {
   return true;
 }
 
+/* ---- closed loop ------------------------------------------------------------------------- */
+
+/* A PD law on every joint of the arm, towards reference[j], in torque mode. */
+typedef struct pd_run {
+  double reference[6];
+  float torques[6];
+  uint64_t previous_tick;
+  uint64_t calls;
+  uint64_t consecutive; /* calls whose tick followed the previous one's */
+  double worst_error;   /* rad, at the last call */
+} pd_run;
+
+static int pd_law(const robotd_tick_state* state, robotd_command* command, void* user_data) {
+  pd_run* run = (pd_run*)user_data;
+  if (run->calls > 0 && state->tick == run->previous_tick + 1) ++run->consecutive;
+  run->previous_tick = state->tick;
+  ++run->calls;
+  run->worst_error = 0;
+  for (size_t j = 0; j < 6; ++j) {
+    const double error = run->reference[j] - state->position[j];
+    run->worst_error = fmax(run->worst_error, fabs(error));
+    run->torques[j] = (float)(20.0 * error - 1.0 * state->velocity[j]);
+  }
+  command->torques = run->torques;
+  /* Done once every joint has settled at its reference. */
+  return run->calls > 200 && run->worst_error < 0.01 && fabs(state->velocity[0]) < 0.05 ? 1 : 0;
+}
+
+static robotd_session* acquire_closed_loop(robotd_client* client) {
+  robotd_session_request request;
+  robotd_session* session = NULL;
+  robotd_session_request_init(&request);
+  request.device = "arm";
+  request.mode = ROBOTD_MODE_TORQUE;
+  request.timeout_ms = 2000;
+  request.on_release = ROBOTD_BEHAVIOR_DAMPING;
+  request.closed_loop = true;
+  request.min_command_success_rate = 0.5F;
+  request.on_low_success_rate = ROBOTD_LOW_RATE_WARN;
+  if (robotd_request_control(client, &request, &session) != ROBOTD_OK) {
+    fprintf(stderr, "request_control: %s\n", robotd_last_error());
+  }
+  return session;
+}
+
+static bool control_loop_pd_moves_the_arm_and_robotd_counts_the_answers(fixture* f) {
+  robotd_session* session = acquire_closed_loop(f->client);
+  CHECK(session != NULL);
+  robotd_tick_state first;
+  CHECK_OK(robotd_session_next_tick(session, 10000, &first));
+  CHECK(strcmp(first.device, "arm") == 0);
+  CHECK(first.joint_count == 6);
+  CHECK(first.period_ns == 1000000);
+  pd_run run = {{0}, {0}, 0, 0, 0, 1.0};
+  for (size_t j = 0; j < 6; ++j) run.reference[j] = first.position[j] + 0.3;
+
+  robotd_control_loop_options options;
+  robotd_control_loop_report report;
+  CHECK_OK(robotd_control_loop_options_init(&options));
+  options.state_timeout_ms = 5000; /* generous: a loaded machine */
+  options.duration_ms = 30000;
+  CHECK_OK(robotd_session_run_control_loop(session, pd_law, &run, &options, &report));
+  fprintf(stderr, "[ measured ] %llu calls, %llu of them the tick after the previous, %llu skipped\n",
+          (unsigned long long)run.calls, (unsigned long long)run.consecutive, (unsigned long long)report.ticks_skipped);
+  /* The law finished: the arm reached the PD law's reference, which only its answers command. */
+  CHECK(report.finished);
+  CHECK(run.worst_error < 0.01);
+  CHECK(report.ticks_seen == run.calls && report.ticks_answered == run.calls);
+  CHECK(report.last_tick - report.first_tick + 1 == report.ticks_seen + report.ticks_skipped);
+  CHECK(run.consecutive > 0);
+
+  /* robotd counted the answers (its /session_status comes every second). */
+  robotd_session_info info;
+  const double start = now_s();
+  do {
+    CHECK_OK(robotd_session_get_info(session, 5000, &info));
+    if (info.ticks_answered_in_time + info.ticks_answered_late > 0) break;
+    sleep_ms(100);
+  } while (now_s() - start < 10.0);
+  CHECK(info.closed_loop);
+  CHECK(info.ticks_answered_in_time + info.ticks_answered_late > 0);
+  CHECK(info.ticks_to_answer >= info.ticks_answered_in_time + info.ticks_answered_late);
+  CHECK(fabsf(info.min_command_success_rate - 0.5F) < 1e-6F);
+  CHECK(info.on_low_success_rate == ROBOTD_LOW_RATE_WARN);
+  robotd_session_free(session);
+  return true;
+}
+
+static int bad_law(const robotd_tick_state* state, robotd_command* command, void* user_data) {
+  (void)state;
+  (void)command;
+  (void)user_data;
+  return 7;
+}
+
+static bool closed_loop_arguments_are_checked(fixture* f) {
+  robotd_session_request request;
+  robotd_session* session = NULL;
+  robotd_session_request_init(&request);
+  CHECK(request.on_low_success_rate == ROBOTD_LOW_RATE_WARN && !request.closed_loop);
+  request.device = "arm";
+  request.on_low_success_rate = (robotd_low_rate_action)5;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_request_control(f->client, &request, &session),
+             "request->on_low_success_rate is 5: expected ROBOTD_LOW_RATE_WARN or ROBOTD_LOW_RATE_FALLBACK");
+  CHECK(session == NULL);
+
+  session = acquire_closed_loop(f->client);
+  CHECK(session != NULL);
+  robotd_tick_state state;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_run_control_loop(session, NULL, NULL, NULL, NULL), "law is NULL");
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_next_tick(session, 1000, NULL), "state is NULL");
+  robotd_control_loop_options options;
+  CHECK_OK(robotd_control_loop_options_init(&options));
+  CHECK(options.duration_ms == 0 && options.state_timeout_ms == 200 && options.stop == NULL);
+  options.state_timeout_ms = 0;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_run_control_loop(session, pd_law, NULL, &options, NULL),
+             "options->state_timeout_ms is 0");
+  /* A tick of another device is not answered. */
+  CHECK_OK(robotd_session_next_tick(session, 10000, &state));
+  robotd_tick_state other = state;
+  strcpy(other.device, "gripper");
+  const robotd_command keepalive = {0};
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_answer(session, &other, &keepalive), "of device 'gripper'");
+  /* A law returning something else than 0 or 1 ends the loop, naming it. */
+  options.state_timeout_ms = 5000;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_run_control_loop(session, bad_law, NULL, &options, NULL),
+             "the law returned 7");
+  robotd_session_free(session);
+  return true;
+}
+
+static bool example_pd_program_runs_the_law(fixture* f) {
+  (void)f;
+  FILE* output = popen(EXAMPLE_PD_CONTROL_C " 2>&1", "r");
+  CHECK(output != NULL);
+  char lines[16][256];
+  int count = 0;
+  while (count < 16 && fgets(lines[count], sizeof lines[count], output) != NULL) fputs(lines[count++], stderr);
+  CHECK(pclose(output) == 0);
+  CHECK(count == 8);
+  CHECK(strstr(lines[0], " ticks answered (ticks ") != NULL);
+  /* Every joint started at 0 and settled at its reference, 0.3 rad. */
+  for (int j = 1; j <= 6; ++j)
+    CHECK(strstr(lines[j], "+0.30") != NULL && strstr(lines[j], "(reference +0.300)") != NULL);
+  CHECK(strncmp(lines[7], "robotd: ", 8) == 0);
+  return true;
+}
+
 /* ---- main -------------------------------------------------------------------------------- */
 
 typedef struct test_case {
@@ -718,6 +869,10 @@ static const test_case kCases[] = {
     {"device_call_returns_json_or_the_drivers_refusal", device_call_returns_json_or_the_drivers_refusal, false},
     {"silent_session_times_out_into_its_fallback", silent_session_times_out_into_its_fallback, false},
     {"example_program_moves_the_arm", example_program_moves_the_arm, false},
+    {"control_loop_pd_moves_the_arm_and_robotd_counts_the_answers",
+     control_loop_pd_moves_the_arm_and_robotd_counts_the_answers, false},
+    {"closed_loop_arguments_are_checked", closed_loop_arguments_are_checked, false},
+    {"example_pd_program_runs_the_law", example_pd_program_runs_the_law, false},
 };
 
 static const test_case* find_case(const char* name) {

@@ -41,6 +41,34 @@ Behavior behavior_argument(robotd_behavior behavior, std::string_view name) {
   return converted;
 }
 
+LowRateAction low_rate_action_argument(robotd_low_rate_action action, std::string_view name) {
+  const auto converted = static_cast<LowRateAction>(action);
+  if (!is_valid(converted)) {
+    fail(ROBOTD_INVALID_ARGUMENT, std::string(name) + " is " + std::to_string(static_cast<int>(action)) +
+                                      ": expected ROBOTD_LOW_RATE_WARN or ROBOTD_LOW_RATE_FALLBACK");
+  }
+  return converted;
+}
+
+Command to_command(const robotd_command& command, std::size_t session_motors) {
+  require_joint_count(command.count, "command->count");
+  // With no motor ids the values address the session's motors, one each.
+  std::size_t values = session_motors;
+  Command converted;
+  if (command.count > 0) {
+    require(command.motor_ids, "command->motor_ids",
+            "command->count motor ids (or NULL with count 0 for the session's motors)");
+    converted.motor_ids = array_argument(command.motor_ids, command.count);
+    values = command.count;
+  }
+  converted.positions = array_argument(command.positions, values);
+  converted.velocities = array_argument(command.velocities, values);
+  converted.kp = array_argument(command.kp, values);
+  converted.kd = array_argument(command.kd, values);
+  converted.torques = array_argument(command.torques, values);
+  return converted;
+}
+
 std::chrono::milliseconds timeout_argument(std::int32_t timeout_ms, std::string_view name, bool allow_zero) {
   if (timeout_ms < 0 || (timeout_ms == 0 && !allow_zero)) {
     fail(ROBOTD_INVALID_ARGUMENT, std::string(name) + " is " + std::to_string(timeout_ms) + ": expected " +

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "errors.hpp"
+#include "robotd/client/session.hpp"
 #include "robotd/messages.hpp"
 #include "robotd/robotd.h"
 
@@ -45,6 +46,9 @@ std::vector<T> array_argument(const T* values, std::size_t count) {
 
 ControlMode mode_argument(robotd_control_mode mode, std::string_view name);
 Behavior behavior_argument(robotd_behavior behavior, std::string_view name);
+LowRateAction low_rate_action_argument(robotd_low_rate_action action, std::string_view name);
+/// A robotd_command for a session of `session_motors` motors.
+Command to_command(const robotd_command& command, std::size_t session_motors);
 /// A timeout in ms: >= 0, or > 0 when `allow_zero` is false.
 std::chrono::milliseconds timeout_argument(std::int32_t timeout_ms, std::string_view name, bool allow_zero);
 

@@ -10,31 +10,8 @@ using robotd::c::check;
 using robotd::c::fail;
 using robotd::c::guarded;
 using robotd::c::require;
-using robotd::c::require_joint_count;
 using robotd::c::session_handle;
-
-namespace {
-
-robotd::Command to_command(const robotd_command& command, std::size_t session_motors) {
-  require_joint_count(command.count, "command->count");
-  // With no motor ids the values address the session's motors, one each.
-  std::size_t values = session_motors;
-  robotd::Command converted;
-  if (command.count > 0) {
-    require(command.motor_ids, "command->motor_ids",
-            "command->count motor ids (or NULL with count 0 for the session's motors)");
-    converted.motor_ids = array_argument(command.motor_ids, command.count);
-    values = command.count;
-  }
-  converted.positions = array_argument(command.positions, values);
-  converted.velocities = array_argument(command.velocities, values);
-  converted.kp = array_argument(command.kp, values);
-  converted.kd = array_argument(command.kd, values);
-  converted.torques = array_argument(command.torques, values);
-  return converted;
-}
-
-}  // namespace
+using robotd::c::to_command;
 
 extern "C" {
 

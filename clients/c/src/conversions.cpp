@@ -1,7 +1,11 @@
 #include "conversions.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
+#include <cstring>
+#include <iterator>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -21,6 +25,8 @@ static_assert(ROBOTD_DEVICE_FAULT == static_cast<int>(DeviceState::kFault));
 static_assert(ROBOTD_DEVICE_ESTOP == static_cast<int>(DeviceState::kEstop));
 static_assert(ROBOTD_DEVICE_MAINTENANCE == static_cast<int>(DeviceState::kMaintenance));
 static_assert(ROBOTD_DEVICE_STOPPED == static_cast<int>(DeviceState::kStopped));
+static_assert(ROBOTD_LOW_RATE_WARN == static_cast<int>(LowRateAction::kWarn));
+static_assert(ROBOTD_LOW_RATE_FALLBACK == static_cast<int>(LowRateAction::kFallback));
 
 template <std::size_t kCapacity>
 void copy_text(std::string_view text, char (&field)[kCapacity]) {
@@ -83,6 +89,53 @@ void to_c(const DeviceStatus& status, robotd_device_status& out) {
   out.loop_overruns = status.loop.overruns;
   out.commands_accepted = status.commands.accepted;
   out.commands_rejected = status.commands.rejected_total();
+}
+
+void to_c(const TickState& state, robotd_tick_state& out) {
+  out = robotd_tick_state{};
+  copy_text(state.header.frame_id, out.device);
+  out.tick = state.tick;
+  out.stamp_ns = state.header.stamp.to_ns();
+  out.deadline_steady_ns = state.deadline_steady_ns;
+  out.period_ns = state.period_ns;
+  out.state_ready_steady_ns = state.state_ready_steady_ns;
+  out.published_steady_ns = state.published_steady_ns;
+  out.state = static_cast<robotd_device_state>(state.state);
+  out.joint_count = joint_count(state.position.size());
+  copy_values(state.position, out.position, out.joint_count);
+  copy_values(state.velocity, out.velocity, out.joint_count);
+  copy_values(state.effort, out.effort, out.joint_count);
+  out.has_imu = state.has_imu;
+  const Quaternion& q = state.imu_orientation;
+  std::ranges::copy(std::array{q.x, q.y, q.z, q.w}, std::begin(out.imu_orientation));
+  const Vector3& w = state.imu_angular_velocity;
+  std::ranges::copy(std::array{w.x, w.y, w.z}, std::begin(out.imu_angular_velocity));
+  const Vector3& a = state.imu_linear_acceleration;
+  std::ranges::copy(std::array{a.x, a.y, a.z}, std::begin(out.imu_linear_acceleration));
+}
+
+void to_c(const SessionInfo& info, robotd_session_info& out) {
+  out = robotd_session_info{};
+  copy_text(info.uuid, out.session_id);  // SessionInfo.uuid holds the public id
+  copy_text(info.node_name, out.node_name);
+  copy_text(info.device, out.device);
+  out.commands_accepted = info.commands_accepted;
+  out.closed_loop = info.closed_loop;
+  out.ticks_to_answer = info.ticks_to_answer;
+  out.ticks_answered_in_time = info.ticks_answered_in_time;
+  out.ticks_answered_late = info.ticks_answered_late;
+  out.ticks_unanswered = info.ticks_unanswered;
+  out.command_success_rate = info.command_success_rate;
+  out.min_command_success_rate = info.min_command_success_rate;
+  out.on_low_success_rate = static_cast<robotd_low_rate_action>(info.on_low_success_rate);
+  out.success_rate_low = info.success_rate_low;
+}
+
+TickState tick_of(const robotd_tick_state& state) {
+  TickState tick;
+  tick.header.frame_id = std::string(state.device, strnlen(state.device, sizeof state.device));
+  tick.tick = state.tick;
+  return tick;
 }
 
 }  // namespace robotd::c

@@ -10,5 +10,9 @@ namespace robotd::c {
 void to_c(const DeviceInfo& info, robotd_device_info& out);
 void to_c(const JointState& state, robotd_joint_state& out);
 void to_c(const DeviceStatus& status, robotd_device_status& out);
+void to_c(const TickState& state, robotd_tick_state& out);
+void to_c(const SessionInfo& info, robotd_session_info& out);
+/// What robotd_session_answer needs of a robotd_tick_state: its device and tick.
+TickState tick_of(const robotd_tick_state& state);
 
 }  // namespace robotd::c

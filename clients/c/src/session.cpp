@@ -12,6 +12,7 @@ using robotd::c::behavior_argument;
 using robotd::c::client_handle;
 using robotd::c::fail;
 using robotd::c::guarded;
+using robotd::c::low_rate_action_argument;
 using robotd::c::mode_argument;
 using robotd::c::require;
 using robotd::c::require_joint_count;
@@ -45,6 +46,9 @@ robotd::SessionRequest to_session_request(const robotd_session_request& request)
       text_argument(request.policy_name, "request->policy_name", robotd::limits::kPolicyNameBytes + 1);
   converted.policy_file_name =
       text_argument(request.policy_file_name, "request->policy_file_name", robotd::limits::kPolicyFileNameBytes + 1);
+  converted.closed_loop = request.closed_loop;
+  converted.min_command_success_rate = request.min_command_success_rate;
+  converted.on_low_success_rate = low_rate_action_argument(request.on_low_success_rate, "request->on_low_success_rate");
   return converted;
 }
 
@@ -61,6 +65,7 @@ robotd_status robotd_session_request_init(robotd_session_request* request) {
     out.on_timeout = static_cast<robotd_behavior>(defaults.on_timeout);
     out.timeout_ms = static_cast<int32_t>(defaults.timeout.count());
     out.on_release = static_cast<robotd_behavior>(defaults.on_release);
+    out.on_low_success_rate = static_cast<robotd_low_rate_action>(defaults.on_low_success_rate);
   });
 }
 

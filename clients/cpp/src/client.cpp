@@ -6,6 +6,7 @@
 
 #include "client_core.hpp"
 #include "policy_data_publisher_impl.hpp"
+#include "tick_link.hpp"
 #include "wire/dds_settings.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
@@ -89,12 +90,21 @@ Result<Session> Client::request_control(const SessionRequest& request) {
   wire_request.default_kd = request.default_kd;
   wire_request.policy_name = request.policy_name;
   wire_request.policy_file_name = request.policy_file_name;
+  wire_request.min_command_success_rate = request.min_command_success_rate;
+  wire_request.on_low_success_rate = request.on_low_success_rate;
   auto response = core_->request_control.call(wire_request, core_->options.service_timeout);
   if (!response) return response.error();
   if (!response.value().success) return refused("/request_control", response.value().message);
   // The session's timeout runs from now: its first commands must not be lost to discovery.
   core_->await_command_subscriber(core_->options.service_timeout);
-  return Session(core_, std::move(response.value()), request);
+  Session session(core_, std::move(response.value()), request);
+  if (request.closed_loop) {
+    // Its first ticks too: the tick state reader is matched before the session is handed over.
+    auto link = session.tick_link();
+    if (!link) return link.error();
+    if (auto opened = link.value()->open_ticks(core_->options.service_timeout); !opened) return opened.error();
+  }
+  return session;
 }
 
 Result<ReleaseControlResponse> Client::release_control(const std::string& uuid, Behavior release_mode) {

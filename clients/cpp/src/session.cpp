@@ -1,8 +1,10 @@
 #include "robotd/client/session.hpp"
 
+#include <cerrno>
 #include <ctime>
 
 #include "client_core.hpp"
+#include "tick_link.hpp"
 
 namespace robotd {
 namespace {
@@ -33,6 +35,7 @@ Session::Session(Session&& other) noexcept = default;
 Session& Session::operator=(Session&& other) noexcept {
   if (this != &other) {
     if (active()) (void)release(release_behavior_);
+    ticks_ = std::move(other.ticks_);
     core_ = std::move(other.core_);
     uuid_ = std::move(other.uuid_);
     session_id_ = std::move(other.session_id_);
@@ -51,7 +54,9 @@ Session::~Session() {
   if (active()) (void)release(release_behavior_);
 }
 
-Result<void> Session::command(const Command& command) {
+Result<void> Session::command(const Command& command) { return publish(command, 0); }
+
+Result<void> Session::publish(const Command& command, std::uint64_t answers_tick) {
   if (!active()) return make_error(ErrorCode::kInvalidArgument, "this session has been released");
   ControlCommand message;
   message.header.stamp = Time::from_ns(clock_ns(CLOCK_REALTIME));
@@ -66,10 +71,62 @@ Result<void> Session::command(const Command& command) {
   message.kp = command.kp;
   message.kd = command.kd;
   message.torques = command.torques;
+  message.answers_tick = answers_tick;
   message.sent_steady_ns = clock_ns(CLOCK_MONOTONIC);
   auto written = core_->commands.write(message);
   if (written) last_sent_ = std::chrono::steady_clock::now();
   return written;
+}
+
+Result<detail::TickLink*> Session::tick_link() {
+  if (!active()) return make_error(ErrorCode::kInvalidArgument, "this session has been released");
+  if (ticks_ == nullptr) {
+    auto link = detail::TickLink::create(core_, device_, session_id_);
+    if (!link) return link.error();
+    ticks_ = std::move(link.value());
+  }
+  return ticks_.get();
+}
+
+Result<TickState> Session::next_tick(std::chrono::milliseconds timeout) {
+  auto link = tick_link();
+  if (!link) return link.error();
+  return link.value()->next_tick(timeout);
+}
+
+Result<void> Session::answer(const TickState& state, const Command& command) {
+  if (state.header.frame_id != device_) {
+    return make_error(ErrorCode::kInvalidArgument, "the TickState is of device '" + state.header.frame_id +
+                                                       "': expected one of '" + device_ + "', this session's device");
+  }
+  if (state.tick == 0) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "the TickState has tick 0: expected one from next_tick (ticks count from 1)");
+  }
+  return publish(command, state.tick);
+}
+
+Result<void> Session::send_aligned(const Command& command, std::chrono::microseconds lead) {
+  if (lead.count() < 0) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "lead is " + std::to_string(lead.count()) + " µs: expected >= 0, how long before a tick to send");
+  }
+  auto link = tick_link();
+  if (!link) return link.error();
+  auto phase = link.value()->phase(core_->options.service_timeout);
+  if (!phase) return phase.error();
+  const std::int64_t send_at = detail::aligned_send_time_ns(
+      phase.value(), clock_ns(CLOCK_MONOTONIC), std::chrono::duration_cast<std::chrono::nanoseconds>(lead).count());
+  const timespec wake{.tv_sec = send_at / 1'000'000'000, .tv_nsec = send_at % 1'000'000'000};
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) == EINTR) {
+  }
+  return publish(command, 0);
+}
+
+Result<SessionInfo> Session::info(std::chrono::milliseconds timeout) {
+  auto link = tick_link();
+  if (!link) return link.error();
+  return link.value()->info(timeout);
 }
 
 Result<void> Session::send_positions(const std::vector<float>& positions_rad) {
@@ -86,6 +143,7 @@ std::chrono::milliseconds Session::time_left() const {
 
 Result<ReleaseControlResponse> Session::release(Behavior release_mode) {
   if (!active()) return make_error(ErrorCode::kInvalidArgument, "this session has already been released");
+  ticks_.reset();
   auto core = std::move(core_);
   auto response = core->release_control.call(ReleaseControlRequest{core->options.node_name, uuid_, release_mode},
                                              core->options.service_timeout);

@@ -57,7 +57,7 @@ extern "C" {
 /* This is a C header: typedef is its only spelling. NOLINTBEGIN(modernize-use-using) */
 
 /* The version of this API: changes when a function or struct of this header changes. */
-#define ROBOTD_C_API_VERSION 3
+#define ROBOTD_C_API_VERSION 4
 
 #define ROBOTD_MAX_JOINTS 64     /* joints per device (the driver API's limit) */
 #define ROBOTD_NAME_CAPACITY 64  /* device, driver, model and joint names, NUL included */
@@ -98,6 +98,12 @@ typedef enum robotd_device_state ROBOTD_ENUM_BASE {
   ROBOTD_DEVICE_MAINTENANCE = 4, /* recover or reset_zero in progress */
   ROBOTD_DEVICE_STOPPED = 5
 } robotd_device_state;
+
+/* What robotd does when a closed-loop session's command success rate falls below its minimum. */
+typedef enum robotd_low_rate_action ROBOTD_ENUM_BASE {
+  ROBOTD_LOW_RATE_WARN = 0,    /* log it and flag it in /session_status (success_rate_low) */
+  ROBOTD_LOW_RATE_FALLBACK = 1 /* end the session with its on_timeout behavior, as on timeout */
+} robotd_low_rate_action;
 
 /* ---- Errors and versions -------------------------------------------------------------- */
 
@@ -175,6 +181,14 @@ typedef struct robotd_session_request {
   robotd_behavior on_release;   /* default KEEP: what robotd_session_free's release asks for */
   const char* policy_name;      /* NULL or "" = none; else who commands, shown in /session_status (<= 255 bytes) */
   const char* policy_file_name; /* NULL or "" = none; the file that policy was loaded from (<= 1023 bytes) */
+  /* Closed loop (see "Closed loop" below). closed_loop: the session reads its device's tick states
+   * from the start: robotd_request_control returns once its reader has matched robotd's writer, so
+   * the first tick after the grant reaches it (false: the reader is made on the first
+   * robotd_session_next_tick / run_control_loop / send_aligned, and robotd publishes no tick
+   * states for a session that does not read them). */
+  bool closed_loop;
+  float min_command_success_rate;             /* 0..1, 0 = none: the least fraction of ticks answered in time */
+  robotd_low_rate_action on_low_success_rate; /* default WARN: what robotd does below that minimum */
 } robotd_session_request;
 
 ROBOTD_API robotd_status robotd_session_request_init(robotd_session_request* request);
@@ -267,6 +281,100 @@ ROBOTD_API robotd_status robotd_next_joint_state(robotd_client* client, const ch
 /* The same for /device_status. */
 ROBOTD_API robotd_status robotd_next_device_status(robotd_client* client, const char* device, int32_t timeout_ms,
                                                    robotd_device_status* status);
+
+/* ---- Closed loop ----------------------------------------------------------------------- */
+
+/* What one tick of a device's loop measured (/<device>/tick_state). A closed-loop session answers
+ * it with robotd_session_answer; robotd counts the answer in time when it arrives before the
+ * device's next state is measured. */
+typedef struct robotd_tick_state {
+  char device[ROBOTD_NAME_CAPACITY];
+  uint64_t tick;                 /* 1, 2, ... */
+  int64_t stamp_ns;              /* the tick's deadline, CLOCK_REALTIME */
+  int64_t deadline_steady_ns;    /* the tick's deadline, CLOCK_MONOTONIC */
+  int64_t period_ns;             /* the next tick is due at deadline_steady_ns + period_ns */
+  int64_t state_ready_steady_ns; /* robotd's loop handed the state over (CLOCK_MONOTONIC) */
+  int64_t published_steady_ns;   /* robotd wrote the sample (CLOCK_MONOTONIC) */
+  robotd_device_state state;
+  size_t joint_count;
+  double position[ROBOTD_MAX_JOINTS]; /* rad, in motor id order */
+  double velocity[ROBOTD_MAX_JOINTS]; /* rad/s */
+  double effort[ROBOTD_MAX_JOINTS];   /* N·m */
+  bool has_imu;                       /* the imu_* fields hold this tick's IMU sample */
+  double imu_orientation[4];          /* x, y, z, w */
+  double imu_angular_velocity[3];     /* rad/s */
+  double imu_linear_acceleration[3];  /* m/s² */
+} robotd_tick_state;
+
+/* The newest tick state of the session's device newer than the last one this returned, waited for
+ * on the calling thread up to timeout_ms (ROBOTD_TIMEOUT). ROBOTD_REFUSED once robotd no longer
+ * lists the session in /session_status (it timed out, fell back or was released). */
+ROBOTD_API robotd_status robotd_session_next_tick(robotd_session* session, int32_t timeout_ms,
+                                                  robotd_tick_state* state);
+/* Sends `command` as the answer to `state` (one from robotd_session_next_tick). */
+ROBOTD_API robotd_status robotd_session_answer(robotd_session* session, const robotd_tick_state* state,
+                                               const robotd_command* command);
+
+/* A control law: fills *command (zeroed before each call) with the answer to *state. The arrays
+ * it points command at must stay valid until the law returns. Returns 0 to go on, 1 when this is
+ * the last answer (it is sent, then the loop ends). */
+typedef int (*robotd_control_law)(const robotd_tick_state* state, robotd_command* command, void* user_data);
+
+typedef struct robotd_control_loop_options {
+  int32_t duration_ms;      /* default 0 = no limit; else the loop ends after this long */
+  int32_t state_timeout_ms; /* default 200: no new tick for this long ends the loop with ROBOTD_TIMEOUT */
+  const volatile int* stop; /* default NULL; else checked before each tick: non-zero (e.g. set by a
+                             * signal handler) ends the loop */
+} robotd_control_loop_options;
+
+typedef struct robotd_control_loop_report {
+  uint64_t ticks_seen;     /* states the law was called with */
+  uint64_t ticks_answered; /* answers sent */
+  uint64_t ticks_skipped;  /* ticks between two it saw that the loop never saw (too slow a law, or a device
+                            * that publishes every Nth tick) */
+  uint64_t first_tick;     /* the first and last tick the law was called with (0 = none) */
+  uint64_t last_tick;
+  bool finished; /* the law returned 1 (else the duration or the stop flag ended the loop) */
+} robotd_control_loop_report;
+
+ROBOTD_API robotd_status robotd_control_loop_options_init(robotd_control_loop_options* options);
+/* Calls `law` with each new tick state of the session's device and sends its answer, on the
+ * calling thread, until the law returns 1, options->duration_ms passes or *options->stop is set
+ * (options NULL = the defaults). Fails as robotd_session_next_tick and robotd_session_answer do
+ * (ROBOTD_TIMEOUT when ticks stop: robotd_last_error() names the last tick seen), and with
+ * ROBOTD_INVALID_ARGUMENT when the law returns something else than 0 or 1, or a malformed
+ * command. *report (may be NULL) is filled on success. */
+ROBOTD_API robotd_status robotd_session_run_control_loop(robotd_session* session, robotd_control_law law,
+                                                         void* user_data, const robotd_control_loop_options* options,
+                                                         robotd_control_loop_report* report);
+/* "Send aligned" streaming: sleeps until lead_us before the device's next tick is due, then sends
+ * `command`. The tick phase comes from the newest tick state if the session reads them, else from
+ * /device_status. lead_us < 0 = ROBOTD_DEFAULT_SEND_LEAD_US. */
+#define ROBOTD_DEFAULT_SEND_LEAD_US 200 /* above the DDS one-way latency on loopback (30–150 µs) */
+ROBOTD_API robotd_status robotd_session_send_aligned(robotd_session* session, const robotd_command* command,
+                                                     int32_t lead_us);
+
+/* The session's entry in /session_status as robotd last published it. */
+typedef struct robotd_session_info {
+  char session_id[ROBOTD_UUID_CAPACITY];
+  char node_name[ROBOTD_NAME_CAPACITY];
+  char device[ROBOTD_NAME_CAPACITY];
+  uint64_t commands_accepted;
+  bool closed_loop;                /* the session has answered a tick */
+  uint64_t ticks_to_answer;        /* since its first answer */
+  uint64_t ticks_answered_in_time; /* applied on the tick after the one answered */
+  uint64_t ticks_answered_late;    /* applied on a later tick */
+  uint64_t ticks_unanswered;       /* never answered */
+  float command_success_rate;      /* in time / to answer over the last 100 ticks to answer, 0..1 */
+  float min_command_success_rate;  /* the session's minimum, 0 = none */
+  robotd_low_rate_action on_low_success_rate;
+  bool success_rate_low; /* below the minimum now */
+} robotd_session_info;
+
+/* This session's robotd_session_info, waiting up to timeout_ms for robotd's first
+ * /session_status listing it; ROBOTD_REFUSED once robotd no longer lists it. */
+ROBOTD_API robotd_status robotd_session_get_info(robotd_session* session, int32_t timeout_ms,
+                                                 robotd_session_info* info);
 
 /* ---- Subscriptions --------------------------------------------------------------------- */
 

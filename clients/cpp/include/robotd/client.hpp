@@ -2,6 +2,7 @@
 #pragma once
 
 #include "robotd/client/client.hpp"
+#include "robotd/client/control_loop.hpp"
 #include "robotd/client/options.hpp"
 #include "robotd/client/policy_data_publisher.hpp"
 #include "robotd/client/session.hpp"
