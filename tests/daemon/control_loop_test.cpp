@@ -167,6 +167,19 @@ class ControlLoopTest : public ::testing::Test {
     command.joints[0] = update;
     mailbox_.post(slot, generation, command, now_ns_ + 1000, 0);
   }
+  // A closed-loop client's answer to the state of tick `tick`.
+  void answer(std::uint8_t slot, std::uint32_t generation, const control::JointTargetUpdate& update,
+              std::uint64_t tick) {
+    control::ValidatedCommand command;
+    command.count = 1;
+    command.joints[0] = update;
+    mailbox_.post(slot, generation, command, now_ns_ + 1000, 0, tick);
+  }
+  // The state the loop published last.
+  LoopState newest_state() {
+    if (const LoopState* fresh = channel_->state.take()) state_ = *fresh;
+    return state_;
+  }
   void keepalive(std::uint8_t slot, std::uint32_t generation) {
     control::ValidatedCommand command;
     command.keepalive = true;
@@ -195,6 +208,7 @@ class ControlLoopTest : public ::testing::Test {
   std::unique_ptr<ControlLoop> loop_;
   std::int64_t now_ns_ = 1000 * kMsNs;
   CommandMailbox mailbox_{*channel_};
+  LoopState state_;
 };
 
 TEST_F(ControlLoopTest, OwnedJointsFollowTheirTargetsInLimitedStepsWhileUnownedJointsStayUndriven) {
@@ -929,6 +943,75 @@ TEST_F(ControlLoopTest, SessionsTimeOutOnTimeWhileMaintenanceHoldsTheDriver) {
   EXPECT_TRUE(loop_events_of(LoopEvent::Type::kSessionTimedOut).empty());
   tick();
   EXPECT_EQ(loop_events_of(LoopEvent::Type::kSessionTimedOut).size(), 1U);
+}
+
+// --- closed loop ----------------------------------------------------------------------------
+
+TEST_F(ControlLoopTest, EachTicksStateCarriesItsNumberAndDeadlineAndAnsweredTicksAreBooked) {
+  start(0, 1, ControlMode::kTorque, {0, 1, 2});
+  tick();
+  for (int i = 0; i < 20; ++i) {
+    const LoopState state = newest_state();
+    ASSERT_TRUE(state.state_due);
+    EXPECT_EQ(state.deadline_ns, now_ns_);  // tick() runs each tick at its deadline
+    EXPECT_EQ(state.period_ns, kPeriodNs);
+    answer(0, 1, torque_target(0, 0.5F), state.tick);
+    tick();
+    EXPECT_DOUBLE_EQ(joint(0).torque_nm, 0.5);  // the answer is applied on the next tick
+  }
+  const AnswerCounts answers = newest_state().answers[0];
+  EXPECT_EQ(answers.generation, 1U);
+  EXPECT_TRUE(answers.closed_loop);
+  EXPECT_EQ(answers.to_answer, 20U);
+  EXPECT_EQ(answers.in_time, 20U);
+  EXPECT_FLOAT_EQ(answers.success_rate, 1.0F);
+}
+
+TEST_F(ControlLoopTest, AClosedLoopSessionBelowItsMinimumFallsBackWhenItAskedTo) {
+  ControlEvent event = session_start(0, 1, ControlMode::kTorque, {0, 1, 2}, Behavior::kDamping);
+  event.min_success_rate = 0.9F;
+  event.on_low_success_rate = LowRateAction::kFallback;
+  start(event);
+  tick();
+  // Every other tick answered: 50 %.
+  for (int i = 0; i < 2 * static_cast<int>(kSuccessRateWindowTicks) + 4; ++i) {
+    if (i % 2 == 0) answer(0, 1, torque_target(0, 0.5F), newest_state().tick);
+    tick();
+  }
+  const auto ended = loop_events_of(LoopEvent::Type::kSessionRateTooLow);
+  ASSERT_EQ(ended.size(), 1U);
+  EXPECT_EQ(ended[0].generation, 1U);
+  EXPECT_EQ(ended[0].behavior, Behavior::kDamping);
+  EXPECT_NEAR(ended[0].success_rate, 0.5, 0.02);
+  // The session's fallback: damping, not the torque it commanded.
+  EXPECT_FALSE(joint(0).owned);
+  EXPECT_DOUBLE_EQ(joint(0).kp, 0.0);
+  EXPECT_DOUBLE_EQ(joint(0).torque_nm, 0.0);
+  // Its next answer moves nothing: the session is over.
+  answer(0, 1, torque_target(0, 0.7F), newest_state().tick);
+  tick();
+  EXPECT_DOUBLE_EQ(joint(0).torque_nm, 0.0);
+}
+
+TEST_F(ControlLoopTest, AClosedLoopSessionBelowItsMinimumThatOnlyWarnsKeepsItsMotors) {
+  ControlEvent event = session_start(0, 1, ControlMode::kTorque, {0, 1, 2});
+  event.min_success_rate = 0.9F;
+  event.on_low_success_rate = LowRateAction::kWarn;
+  start(event);
+  tick();
+  for (int i = 0; i < 2 * static_cast<int>(kSuccessRateWindowTicks) + 4; ++i) {
+    if (i % 2 == 0) answer(0, 1, torque_target(0, 0.5F), newest_state().tick);
+    tick();
+  }
+  const auto events = loop_events();
+  EXPECT_EQ(std::count_if(events.begin(), events.end(),
+                          [](const LoopEvent& e) { return e.type == LoopEvent::Type::kSuccessRateLow; }),
+            1);
+  EXPECT_TRUE(std::none_of(events.begin(), events.end(), [](const LoopEvent& e) { return ends_session(e.type); }));
+  EXPECT_TRUE(newest_state().answers[0].rate_low);
+  answer(0, 1, torque_target(0, 0.7F), newest_state().tick);
+  tick();
+  EXPECT_FLOAT_EQ(static_cast<float>(joint(0).torque_nm), 0.7F);
 }
 
 }  // namespace

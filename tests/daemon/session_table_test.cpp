@@ -2,6 +2,8 @@
 // overlap refused naming the holder, every request checked before it is granted.
 #include "session/session_table.hpp"
 
+#include <limits>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -124,6 +126,28 @@ TEST_F(SessionTableTest, InvalidControlModeIsRefused) {
 TEST_F(SessionTableTest, InvalidDefaultBehaviorIsRefused) {
   EXPECT_THAT(refusal(one_device_, request("n", {0}, ControlMode::kPosition, static_cast<Behavior>(-1))),
               HasSubstr("default_behavior -1 is not one of KEEP_MODE=0, DAMPING_MODE=1, ZERO_TORQUE_MODE=2"));
+}
+
+TEST_F(SessionTableTest, AMinimumSuccessRateOutside0To1OrNotANumberIsRefused) {
+  for (const float rate : {-0.1F, 1.5F, std::numeric_limits<float>::quiet_NaN()}) {
+    RequestControlRequest r = request("n", {0});
+    r.min_command_success_rate = rate;
+    EXPECT_THAT(refusal(one_device_, r), HasSubstr("is outside 0..1 (the least fraction of ticks answered in time"))
+        << rate;
+  }
+  RequestControlRequest r = request("n", {0});
+  r.min_command_success_rate = 0.98F;
+  r.on_low_success_rate = LowRateAction::kFallback;
+  const SessionRecord granted = grant_ok(one_device_, r, "u1");
+  EXPECT_FLOAT_EQ(granted.min_command_success_rate, 0.98F);
+  EXPECT_EQ(granted.on_low_success_rate, LowRateAction::kFallback);
+}
+
+TEST_F(SessionTableTest, AnUnknownLowSuccessRateActionIsRefused) {
+  RequestControlRequest r = request("n", {0});
+  r.on_low_success_rate = static_cast<LowRateAction>(2);
+  EXPECT_THAT(refusal(one_device_, r),
+              HasSubstr("on_low_success_rate 2 is not one of LOW_RATE_WARN=0, LOW_RATE_FALLBACK=1"));
 }
 
 TEST_F(SessionTableTest, TimeoutBelowTheMinimumIsRefused) {

@@ -17,6 +17,7 @@
 #include "dds/yesense_imu.hpp"
 #include "joystick/joystick_mapper.hpp"
 #include "robotd_fixture.hpp"
+#include "sample_queue.hpp"
 #include "wire/qos.hpp"
 #include "wire/topic_io.hpp"
 #include "wire/topics.hpp"
@@ -31,34 +32,6 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr std::int16_t kFull = 32767;
-
-// The latest sample a subscription delivered that satisfies a predicate.
-template <class T>
-class Latest {
- public:
-  void offer(const T& value) {
-    const std::lock_guard lock(mutex_);
-    values_.push_back(value);
-  }
-  std::optional<T> wait_for(const std::function<bool(const T&)>& predicate, std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      {
-        const std::lock_guard lock(mutex_);
-        for (; checked_ < values_.size(); ++checked_) {
-          if (predicate(values_[checked_])) return values_[checked_++];
-        }
-      }
-      std::this_thread::sleep_for(5ms);
-    }
-    return std::nullopt;
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<T> values_;
-  std::size_t checked_ = 0;
-};
 
 bool neutral(const Joy& joy) { return joystick::same_values(joy, Joy{}); }
 
@@ -98,7 +71,7 @@ TEST_F(PiPlusTopicsTest, JsEventsWrittenToTheJoystickDeviceArriveOnJoyAndItsUnpl
   nlohmann::json config = sim_arm_config(domain_.id());
   config["joystick"] = {{"device", make_fifo()}, {"interface", "js"}, {"rate_hz", 20}, {"deadzone", 0.1}};
   start_robotd(config);
-  Latest<Joy> joys;
+  SampleQueue<Joy> joys;
   const Subscription subscription = client().on_joy([&](const Joy& joy) { joys.offer(joy); });
   ASSERT_TRUE(joys.wait_for([this](const Joy& joy) { return joy.header.frame_id == fifo_; }, 5s))
       << "no /joy sample while the device is open";
@@ -160,7 +133,7 @@ TEST_F(PiPlusTopicsTest, YesenseTopicsCarryTheHumanoidsImuInDegrees) {
   auto yesense_imu = wire::TopicReader<Imu>::create(participant.value(), wire::kYesenseImuTopic, qos.get());
   ASSERT_TRUE(rpy && gyro && acc && quat && yesense_imu);
 
-  Latest<Imu> imus;
+  SampleQueue<Imu> imus;
   const Subscription subscription = client().on_imu([&](const Imu& imu) { imus.offer(imu); });
   const auto imu = imus.wait_for([](const Imu& sample) { return sample.angular_velocity.x > 0.05; }, 5s);
   ASSERT_TRUE(imu) << "/imu never showed the IMU set on the simulator";

@@ -215,9 +215,7 @@ class LoopRig {
 
     // The service side learns what the loop did (the publisher thread's job in robotd).
     for (const device::LoopEvent& event : events_) {
-      if (event.type == device::LoopEvent::Type::kSessionTimedOut ||
-          event.type == device::LoopEvent::Type::kSessionReleased ||
-          event.type == device::LoopEvent::Type::kSessionEndedByShutdown) {
+      if (device::ends_session(event.type)) {
         (void)sessions_.end(0, event.slot, event.generation);
       }
     }

@@ -244,9 +244,7 @@ class ServiceRig {
 
     // The state publisher's job in robotd: sessions the loop ended leave the session table.
     for (const device::LoopEvent& event : events_) {
-      if (event.type == device::LoopEvent::Type::kSessionTimedOut ||
-          event.type == device::LoopEvent::Type::kSessionReleased ||
-          event.type == device::LoopEvent::Type::kSessionEndedByShutdown) {
+      if (device::ends_session(event.type)) {
         (void)sessions_->session_ended(0, event.slot, event.generation);
       }
     }

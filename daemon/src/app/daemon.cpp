@@ -12,6 +12,8 @@ namespace {
 
 // Deep enough that a subscriber that misses a few 1 kHz samples can still catch up.
 constexpr int kStateHistoryDepth = 10;
+// A closed-loop client answers the newest state only: an older one is never worth delivering.
+constexpr int kTickStateHistoryDepth = 1;
 
 template <class T>
 Result<void> create_writer(const wire::Participant& participant, std::string_view topic, const dds_qos_t* qos,
@@ -121,6 +123,14 @@ Result<void> Daemon::start_dds() {
     if (!created) return created;
   }
   if (auto imu_writers = start_imu_writers(); !imu_writers) return imu_writers;
+  const auto tick_state_qos = wire::reliable_qos(kTickStateHistoryDepth);
+  tick_states_.resize(devices_.size());
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    const std::string topic = wire::tick_state_topic(devices_[i]->model().name);
+    if (auto created = create_writer(*participant_, topic, tick_state_qos.get(), tick_states_[i]); !created) {
+      return created;
+    }
+  }
 
   auto session_status = dds::SessionStatusPublisher::create(
       *participant_, std::chrono::milliseconds(config_.daemon.session_status_period_ms));
@@ -133,23 +143,25 @@ Result<void> Daemon::start_dds() {
       [this] { session_status_->changed(); });
   intake_ = std::make_unique<dds::CommandIntake>(*participant_, device_ptrs_, *sessions_, surface_counters_);
 
-  const dds::StateWriters writers{.joint_states = joint_states_.get(),
-                                  .imu = {.imu = imu_.get(),
-                                          .yesense_rpy = yesense_rpy_.get(),
-                                          .yesense_acc = yesense_acc_.get(),
-                                          .yesense_gyro = yesense_gyro_.get(),
-                                          .yesense_quat = yesense_quat_.get(),
-                                          .yesense_imu = yesense_imu_.get()},
-                                  .device_status = device_status_.get(),
-                                  .end_pose = end_pose_.get()};
+  dds::StateWriters writers{.joint_states = joint_states_.get(),
+                            .imu = {.imu = imu_.get(),
+                                    .yesense_rpy = yesense_rpy_.get(),
+                                    .yesense_acc = yesense_acc_.get(),
+                                    .yesense_gyro = yesense_gyro_.get(),
+                                    .yesense_quat = yesense_quat_.get(),
+                                    .yesense_imu = yesense_imu_.get()},
+                            .device_status = device_status_.get(),
+                            .end_pose = end_pose_.get()};
   std::vector<service::DeviceObserver*> observers;
   std::vector<device::BlackBox*> boxes;
   for (std::size_t i = 0; i < devices_.size(); ++i) {
+    writers.tick_state = tick_states_[i].get();
     publishers_.push_back(std::make_unique<dds::StatePublisher>(
         *devices_[i], i, writers, *sessions_, intake_->counters(i), *black_boxes_[i], config_.daemon));
     observers.push_back(publishers_.back().get());
     boxes.push_back(black_boxes_[i].get());
   }
+  sessions_->read_answers_from(observers);
   device_services_ = std::make_unique<service::DeviceServices>(device_ptrs_, boxes, observers, *sessions_);
   reconnector_ = std::make_unique<service::Reconnector>(device_ptrs_, observers);
   auto services = dds::ServiceHost::create(*participant_, *sessions_, *device_services_, surface_counters_);
@@ -225,6 +237,7 @@ void Daemon::stop() {
   imu_.reset();
   device_status_.reset();
   end_pose_.reset();
+  tick_states_.clear();
   joystick_.reset();
   joy_.reset();
   yesense_rpy_.reset();

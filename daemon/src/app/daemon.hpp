@@ -58,6 +58,7 @@ class Daemon {
   std::unique_ptr<wire::TopicWriter<Imu>> imu_;
   std::unique_ptr<wire::TopicWriter<DeviceStatus>> device_status_;
   std::unique_ptr<wire::TopicWriter<PoseStamped>> end_pose_;
+  std::vector<std::unique_ptr<wire::TopicWriter<TickState>>> tick_states_;  // per device
   // The PI Plus IMU node's topics, when a device has an IMU (and daemon.yesense_imu_topics).
   std::unique_ptr<wire::TopicWriter<Vector3>> yesense_rpy_;
   std::unique_ptr<wire::TopicWriter<Vector3>> yesense_acc_;

@@ -79,6 +79,15 @@ const control::ValidatedCommand* CommandGate::handle(const ControlCommand& comma
     reject(device_index, control::Rejection::kMalformed, [&] { return oversize->describe() + sender(); });
     return nullptr;
   }
+  if (const std::uint64_t newest = device.channel().ticks.load(std::memory_order_acquire);
+      command.answers_tick > newest) {
+    reject(device_index, control::Rejection::kMalformed, [&] {
+      return "answers_tick " + std::to_string(command.answers_tick) + " names a tick device '" + device.model().name +
+             "' has not run (its newest is " + std::to_string(newest) +
+             "): answer a TickState's tick, or send 0 for none" + sender();
+    });
+    return nullptr;
+  }
   if (const auto refusal = device::command_refusal(device.channel())) {
     reject(device_index, refusal->reason, [&] { return refusal->detail + sender(); });
     return nullptr;
@@ -92,7 +101,8 @@ const control::ValidatedCommand* CommandGate::handle(const ControlCommand& comma
     return nullptr;
   }
 
-  mailboxes_[device_index]->post(session->slot, session->generation, validated_, now_ns, command.sent_steady_ns);
+  mailboxes_[device_index]->post(session->slot, session->generation, validated_, now_ns, command.sent_steady_ns,
+                                 command.answers_tick);
 
   counters.accepted.fetch_add(1, std::memory_order_relaxed);
   if (validated_.clamped) counters.clamped.fetch_add(1, std::memory_order_relaxed);

@@ -26,6 +26,8 @@ const char* session_end_text(device::LoopEvent::Type type) {
       return "released";
     case device::LoopEvent::Type::kSessionEndedByShutdown:
       return "ended by shutdown";
+    case device::LoopEvent::Type::kSessionRateTooLow:
+      return "ended: its command success rate fell below its minimum";
     default:
       return "ended";
   }
@@ -50,10 +52,15 @@ StatePublisher::StatePublisher(device::Device& device, std::size_t device_index,
   joint_state_.position.resize(model.joint_count());
   joint_state_.velocity.resize(model.joint_count());
   joint_state_.effort.resize(model.joint_count());
+  tick_state_.header.frame_id = model.name;
+  tick_state_.position.resize(model.joint_count());
+  tick_state_.velocity.resize(model.joint_count());
+  tick_state_.effort.resize(model.joint_count());
 }
 
 StatePublisher::~StatePublisher() {
   stopping_.store(true);
+  device_.channel().state_ready.notify();
   if (thread_.joinable()) thread_.join();
 }
 
@@ -63,34 +70,33 @@ void StatePublisher::start() {
 
 void StatePublisher::run() {
   pthread_setname_np(pthread_self(), ("pub-" + device_.model().name).substr(0, 15).c_str());
-  const auto& config = device_.config();
-  const int state_rate = config.joint_state_rate_hz > 0 ? config.joint_state_rate_hz : config.rate_hz;
-  const std::int64_t period_ns = rt::kNsPerSecond / state_rate;
   const std::int64_t status_period_ns = rt::kNsPerSecond / daemon_.status_rate_hz;
-  std::int64_t next = rt::monotonic_now_ns();
-  std::int64_t next_status = next;
+  rt::TickSignal& ticks = device_.channel().state_ready;
+  std::int64_t next_status = rt::monotonic_now_ns();
+  std::uint32_t seen = ticks.count();
   while (!stopping_.load()) {
+    // Woken by the loop's next tick; the timeout keeps /device_status going while it does not tick.
+    ticks.wait(seen, std::max<std::int64_t>(next_status - rt::monotonic_now_ns(), 0));
+    seen = ticks.count();
     drain_loop(true);
     const std::int64_t now = rt::monotonic_now_ns();
     if (now >= next_status) {
       publish_device_status();
       next_status = now + status_period_ns;
     }
-    next += period_ns;
-    if (next < now) next = now + period_ns;  // fell behind: skip rather than burst
-    rt::sleep_until_ns(next);
   }
 }
 
 void StatePublisher::finish() {
   stopping_.store(true);
+  device_.channel().state_ready.notify();
   if (thread_.joinable()) thread_.join();
   drain_loop(false);
   publish_device_status();
   writers_.device_status->wait_for_acks(DDS_MSECS(500));
 }
 
-void StatePublisher::drain_loop(bool publish_state) {
+void StatePublisher::drain_loop(bool publish_states) {
   device::DeviceChannel& channel = device_.channel();
   {
     const std::lock_guard lock(window_mutex_);
@@ -102,8 +108,8 @@ void StatePublisher::drain_loop(bool publish_state) {
       const std::lock_guard lock(latest_mutex_);
       latest_ = *state;
     }
-    if (publish_state) {
-      publish_joint_state(*state);
+    if (publish_states) {
+      publish_state(*state);
       publish_end_pose(*state);
     }
   }
@@ -114,16 +120,36 @@ void StatePublisher::handle(const device::LoopEvent& event) {
   switch (event.type) {
     case device::LoopEvent::Type::kSessionTimedOut:
     case device::LoopEvent::Type::kSessionReleased:
-    case device::LoopEvent::Type::kSessionEndedByShutdown: {
+    case device::LoopEvent::Type::kSessionEndedByShutdown:
+    case device::LoopEvent::Type::kSessionRateTooLow: {
       const auto ended = sessions_.session_ended(device_index_, event.slot, event.generation);
       if (event.type == device::LoopEvent::Type::kSessionTimedOut) {
         spdlog::warn("device '{}': session {} of node '{}' timed out after {} ms without a command; motors {}", name,
                      ended ? ended->session_id : "?", ended ? app::log_text(ended->node_name) : "?",
                      event.silence_ns / rt::kNsPerMs, to_string(event.behavior));
+      } else if (event.type == device::LoopEvent::Type::kSessionRateTooLow) {
+        spdlog::warn(
+            "device '{}': session {} of node '{}' answered {:.0f} % of the last {} ticks in time, below its "
+            "minimum of {:.0f} %: ended, motors {}",
+            name, ended ? ended->session_id : "?", ended ? app::log_text(ended->node_name) : "?",
+            100.0 * event.success_rate, kSuccessRateWindowTicks, ended ? 100.0 * ended->min_command_success_rate : 0.0,
+            to_string(event.behavior));
       } else {
         spdlog::info("device '{}': session in slot {} {}; motors {}", name, event.slot, session_end_text(event.type),
                      to_string(event.behavior));
       }
+      break;
+    }
+    case device::LoopEvent::Type::kSuccessRateLow:
+    case device::LoopEvent::Type::kSuccessRateRecovered: {
+      const bool low = event.type == device::LoopEvent::Type::kSuccessRateLow;
+      // A rate that hovers at the minimum crosses it often: at most one line a second per device.
+      rate_log_.log(low ? spdlog::level::warn : spdlog::level::info, name, [&] {
+        return fmt::format(
+            "device '{}': the closed-loop session in slot {} answers {:.0f} % of its last {} ticks in "
+            "time, {} its minimum",
+            name, event.slot, 100.0 * event.success_rate, kSuccessRateWindowTicks, low ? "below" : "back at");
+      });
       break;
     }
     case device::LoopEvent::Type::kFaultLatched:
@@ -149,10 +175,48 @@ void StatePublisher::handle(const device::LoopEvent& event) {
   }
 }
 
-void StatePublisher::publish_joint_state(const device::LoopState& state) {
-  if (state.state == DeviceState::kConnecting) return;
+void StatePublisher::publish_state(const device::LoopState& state) {
+  if (!state.state_due || state.state == DeviceState::kConnecting) return;
+  // Stamped with the tick's deadline, on the wall clock ROS tools expect.
+  const std::int64_t deadline_wall_ns = rt::realtime_now_ns() - (rt::monotonic_now_ns() - state.deadline_ns);
+  const Header header{Time::from_ns(deadline_wall_ns), device_.model().name};
+  publish_tick_state(state, header);
+  publish_joint_state(state, header);
+  if (device_.model().has_imu && state.feedback.has_imu) publish_imu(state.feedback.imu, header);
+}
+
+// Only while a closed-loop client listens: the same state again, with what it needs to answer.
+void StatePublisher::publish_tick_state(const device::LoopState& state, const Header& header) {
+  if (writers_.tick_state == nullptr || writers_.tick_state->matched_readers() == 0) return;
+  tick_state_.header.stamp = header.stamp;
+  tick_state_.tick = state.tick;
+  tick_state_.deadline_steady_ns = state.deadline_ns;
+  tick_state_.period_ns = state.period_ns;
+  tick_state_.state_ready_steady_ns = state.ready_ns;
+  tick_state_.state = state.state;
   const std::size_t count = device_.model().joint_count();
-  joint_state_.header.stamp = Time::from_ns(rt::realtime_now_ns());
+  for (std::size_t j = 0; j < count; ++j) {
+    tick_state_.position[j] = state.feedback.joints[j].position_rad;
+    tick_state_.velocity[j] = state.feedback.joints[j].velocity_rad_s;
+    tick_state_.effort[j] = state.feedback.joints[j].effort_nm;
+  }
+  tick_state_.has_imu = device_.model().has_imu && state.feedback.has_imu;
+  if (tick_state_.has_imu) {
+    const driver::ImuSample& imu = state.feedback.imu;
+    tick_state_.imu_orientation = {imu.orientation_xyzw[0], imu.orientation_xyzw[1], imu.orientation_xyzw[2],
+                                   imu.orientation_xyzw[3]};
+    tick_state_.imu_angular_velocity = {imu.angular_velocity_rad_s[0], imu.angular_velocity_rad_s[1],
+                                        imu.angular_velocity_rad_s[2]};
+    tick_state_.imu_linear_acceleration = {imu.linear_acceleration_m_s2[0], imu.linear_acceleration_m_s2[1],
+                                           imu.linear_acceleration_m_s2[2]};
+  }
+  tick_state_.published_steady_ns = rt::monotonic_now_ns();
+  (void)writers_.tick_state->write(tick_state_);
+}
+
+void StatePublisher::publish_joint_state(const device::LoopState& state, const Header& header) {
+  const std::size_t count = device_.model().joint_count();
+  joint_state_.header.stamp = header.stamp;
   for (std::size_t j = 0; j < count; ++j) {
     joint_state_.position[j] = state.feedback.joints[j].position_rad;
     joint_state_.velocity[j] = state.feedback.joints[j].velocity_rad_s;
@@ -163,7 +227,6 @@ void StatePublisher::publish_joint_state(const device::LoopState& state) {
     ++joint_states_published_;
     last_published_stamp_ns_ = joint_state_.header.stamp.to_ns();
   }
-  if (device_.model().has_imu && state.feedback.has_imu) publish_imu(state.feedback.imu, joint_state_.header);
 }
 
 void StatePublisher::publish_imu(const driver::ImuSample& sample, const Header& header) {
@@ -230,6 +293,8 @@ DeviceStatus StatePublisher::device_status() const {
   status.loop.ticks = state.tick;
   status.loop.overruns = state.overruns;
   status.loop.rt_heap_allocations = state.rt_allocations;
+  status.loop.tick_deadline_steady_ns = state.deadline_ns;
+  status.loop.period_ns = state.period_ns;
   status.commands = counters_.snapshot(device_.channel().dropped_stale.load(std::memory_order_relaxed));
   {
     const std::lock_guard lock(published_mutex_);
@@ -258,10 +323,12 @@ nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
   std::vector<std::int64_t> wake;
   std::vector<std::int64_t> execution;
   std::vector<std::int64_t> period;
+  std::vector<std::int64_t> round_trip;  // ticks that took an answer only
   for (const auto& timing : window) {
     wake.push_back(timing.wake_latency_ns);
     execution.push_back(timing.execution_ns);
     period.push_back(timing.period_ns);
+    if (timing.answer_round_trip_ns >= 0) round_trip.push_back(timing.answer_round_trip_ns);
   }
   const device::LoopState state = latest();
   nlohmann::json out = {{"device", device_.model().name},
@@ -276,6 +343,7 @@ nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
   if (samples) {  // before percentiles() reorders them
     out["wake_latency_ns"] = wake;
     out["execution_ns"] = execution;
+    out["answer_round_trip_ns"] = round_trip;
   }
   const auto summary = [](std::vector<std::int64_t>& values) {
     const device::Percentiles p = device::percentiles(values);
@@ -285,6 +353,8 @@ nlohmann::json StatePublisher::loop_timing(bool samples, bool reset) {
   out["wake_latency_us"] = summary(wake);
   out["execution_us"] = summary(execution);
   out["period_us"] = summary(period);
+  out["answers"] = round_trip.size();
+  out["answer_round_trip_us"] = summary(round_trip);
   return out;
 }
 

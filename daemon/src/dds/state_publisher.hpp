@@ -1,8 +1,8 @@
-// Per device, off the RT thread: publishes /joint_states (and /imu with the PI Plus
-// /yesense_imu/* topics) at the device's state
-// rate and /device_status at the status rate, folds the loop's tick timings into the
-// statistics window, and acts on what the loop reports (sessions it ended, faults, black box).
-// It is the single reader of the loop's state mailbox and event rings.
+// Per device, off the RT thread: woken by the loop right after each tick, publishes that tick's
+// state on /joint_states (with /imu and the PI Plus /yesense_imu/* topics) and /<device>/tick_state
+// (every state_every_ticks-th tick), /device_status at the status rate, folds the loop's tick
+// timings into the statistics window, and acts on what the loop reports (sessions it ended,
+// faults, black box). It is the single reader of the loop's state mailbox and event rings.
 #pragma once
 
 #include <atomic>
@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/throttled_log.hpp"
 #include "config/config.hpp"
 #include "device/black_box.hpp"
 #include "device/device.hpp"
@@ -36,6 +37,7 @@ struct StateWriters {
   ImuWriters imu;
   const wire::TopicWriter<DeviceStatus>* device_status = nullptr;
   const wire::TopicWriter<PoseStamped>* end_pose = nullptr;
+  const wire::TopicWriter<TickState>* tick_state = nullptr;  // the device's own topic
 };
 
 class StatePublisher final : public service::DeviceObserver {
@@ -58,9 +60,11 @@ class StatePublisher final : public service::DeviceObserver {
  private:
   DeviceStatus device_status() const;
   void run();
-  void drain_loop(bool publish_state);
+  void drain_loop(bool publish_states);
   void handle(const device::LoopEvent& event);
-  void publish_joint_state(const device::LoopState& state);
+  void publish_state(const device::LoopState& state);
+  void publish_joint_state(const device::LoopState& state, const Header& header);
+  void publish_tick_state(const device::LoopState& state, const Header& header);
   void publish_imu(const driver::ImuSample& sample, const Header& header);
   void publish_end_pose(const device::LoopState& state);
   void publish_device_status();
@@ -81,9 +85,11 @@ class StatePublisher final : public service::DeviceObserver {
   std::uint64_t joint_states_published_ = 0;
   std::int64_t last_published_stamp_ns_ = 0;
   JointState joint_state_;
+  TickState tick_state_;
   std::int64_t next_end_pose_ns_ = 0;
   mutable std::mutex latest_mutex_;
   device::LoopState latest_{};
+  app::ThrottledLog rate_log_;
   std::atomic<bool> stopping_{false};
   std::thread thread_;
 };

@@ -3,7 +3,7 @@
 namespace robotd::device {
 
 void CommandMailbox::post(std::uint8_t slot, std::uint32_t generation, const control::ValidatedCommand& command,
-                          std::int64_t received_ns, std::int64_t sent_ns) noexcept {
+                          std::int64_t received_ns, std::int64_t sent_ns, std::uint64_t answers_tick) noexcept {
   const std::uint64_t sequence = ++sequence_;
   for (std::size_t i = 0; i < command.count; ++i) {
     const control::JointTargetUpdate& update = command.joints[i];
@@ -14,7 +14,7 @@ void CommandMailbox::post(std::uint8_t slot, std::uint32_t generation, const con
     target.sent_ns = sent_ns;
     target.update = update;
   }
-  working_.slots[slot] = SlotActivity{generation, received_ns};
+  working_.slots[slot] = SlotActivity{generation, received_ns, answers_tick};
   channel_.commands.write_buffer() = working_;
   channel_.commands.publish();
 }

@@ -17,9 +17,9 @@ class CommandMailbox {
 
   /// Writes an accepted command of the session in `slot` (`generation`) and publishes it.
   /// `received_ns` is when robotd took the command (CLOCK_MONOTONIC), `sent_ns` the sender's
-  /// stamp (0 = unknown).
+  /// stamp (0 = unknown), `answers_tick` the tick whose state it answers (0 = none).
   void post(std::uint8_t slot, std::uint32_t generation, const control::ValidatedCommand& command,
-            std::int64_t received_ns, std::int64_t sent_ns) noexcept;
+            std::int64_t received_ns, std::int64_t sent_ns, std::uint64_t answers_tick = 0) noexcept;
 
  private:
   DeviceChannel& channel_;

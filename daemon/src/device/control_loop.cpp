@@ -52,8 +52,8 @@ void ControlLoop::run() noexcept {
     tick(deadline, wake);
     const std::int64_t end = rt::monotonic_now_ns();
     last_execution_ns_ = end - wake;
-    channel_.timings.push(
-        TickTiming{wake - deadline, last_execution_ns_, previous_wake == 0 ? period_ns_ : wake - previous_wake});
+    channel_.timings.push(TickTiming{wake - deadline, last_execution_ns_,
+                                     previous_wake == 0 ? period_ns_ : wake - previous_wake, answer_round_trip_ns_});
     previous_wake = wake;
     deadline += period_ns_;
     if (end > deadline) {
@@ -70,6 +70,8 @@ void ControlLoop::run() noexcept {
 void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   ++tick_count_;
   newest_sent_ns_ = 0;
+  answer_round_trip_ns_ = -1;
+  recent_deadlines_[tick_count_ % recent_deadlines_.size()] = deadline_ns;
   take_limits();
   handle_maintenance(now_ns);
   if (!in_maintenance_) read_feedback(now_ns);
@@ -83,6 +85,7 @@ void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   // follows; sessions time out on time even while maintenance holds the driver.
   take_commands();
   expire_sessions(now_ns);
+  book_answers(now_ns);
   if (!in_maintenance_) {
     if (!safe_state_ && !shutting_down_) apply_targets();
     write_command(deadline_ns, now_ns);
@@ -92,9 +95,10 @@ void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   if (allocation_baseline_ >= 0) rt_allocations_ = rt::thread_allocation_count() - allocation_baseline_;
 
   const std::int64_t wake_latency = now_ns - deadline_ns;
-  publish(now_ns, wake_latency);
+  publish(deadline_ns, now_ns);
   record_black_box(now_ns, wake_latency);
   channel_.ticks.store(tick_count_, std::memory_order_release);
+  channel_.state_ready.notify();
 }
 
 // Limits narrowed at run time (Device::narrow_limits) hold from this tick on. A setpoint now
@@ -112,9 +116,17 @@ void ControlLoop::drain_control_events(std::int64_t now_ns) noexcept {
     SlotRuntime& slot = slots_[event->slot];
     if (event->type == ControlEvent::Type::kSessionStart) {
       if (slot.active) end_session(event->slot, slot.timeout_behavior, LoopEvent::Type::kSessionReleased, now_ns, 0);
-      slot = SlotRuntime{
-          true,          event->generation, event->mode,      event->behavior, event->timeout_ns, event->granted_ns,
-          event->motors, event->default_kp, event->default_kd};
+      slot = SlotRuntime{true,
+                         event->generation,
+                         event->mode,
+                         event->behavior,
+                         event->timeout_ns,
+                         event->granted_ns,
+                         event->motors,
+                         event->default_kp,
+                         event->default_kd,
+                         event->on_low_success_rate};
+      answers_[event->slot].start(event->generation, event->min_success_rate);
       newest_started_generation_ = std::max(newest_started_generation_, event->generation);
       for (std::size_t j = 0; j < joint_count_; ++j) {
         if (!event->motors.test(j)) continue;
@@ -143,6 +155,7 @@ void ControlLoop::end_session(std::size_t slot_index, Behavior behavior, LoopEve
   event.behavior = behavior;
   event.time_ns = now_ns;
   event.silence_ns = silence_ns;
+  event.success_rate = answers_[slot_index].counts().success_rate;
   post(event);
   slot.active = false;
 }
@@ -169,6 +182,42 @@ void ControlLoop::expire_sessions(std::int64_t now_ns) noexcept {
     if (silence > slot.timeout_ns) {
       end_session(s, slot.timeout_behavior, LoopEvent::Type::kSessionTimedOut, now_ns, silence);
     }
+  }
+}
+
+// Closed-loop sessions: which offered ticks each one answered in time, and its minimum rate.
+void ControlLoop::book_answers(std::int64_t now_ns) noexcept {
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    const SlotRuntime& slot = slots_[s];
+    if (!slot.active) continue;
+    AnswerBook& book = answers_[s];
+    if (commands_ != nullptr && commands_->slots[s].generation == slot.generation) {
+      const SlotActivity& activity = commands_->slots[s];
+      if (book.take_answer(activity.answers_tick, offered_tick_) &&
+          tick_count_ - activity.answers_tick < recent_deadlines_.size()) {
+        const std::int64_t round_trip =
+            activity.last_command_ns - recent_deadlines_[activity.answers_tick % recent_deadlines_.size()];
+        answer_round_trip_ns_ = std::max(answer_round_trip_ns_, round_trip);
+      }
+    }
+    book.close_overdue(offered_tick_, tick_count_, settings_.state_every_ticks);
+    if (book.fell_below_minimum() || book.recovered()) {
+      LoopEvent event;
+      event.slot = static_cast<std::uint8_t>(s);
+      event.generation = slot.generation;
+      event.time_ns = now_ns;
+      event.success_rate = book.counts().success_rate;
+      if (book.recovered()) {
+        event.type = LoopEvent::Type::kSuccessRateRecovered;
+        post(event);
+      } else if (slot.on_low_success_rate == LowRateAction::kFallback) {
+        end_session(s, slot.timeout_behavior, LoopEvent::Type::kSessionRateTooLow, now_ns, 0);
+      } else {
+        event.type = LoopEvent::Type::kSuccessRateLow;
+        post(event);
+      }
+    }
+    book.end_tick();
   }
 }
 
@@ -527,12 +576,18 @@ DeviceState ControlLoop::current_state() const noexcept {
   return DeviceState::kRunning;
 }
 
-void ControlLoop::publish(std::int64_t now_ns, std::int64_t /*wake_latency_ns*/) noexcept {
+void ControlLoop::publish(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   const DeviceState state = current_state();
   channel_.device_state.store(state, std::memory_order_release);
+  const bool due = tick_count_ % settings_.state_every_ticks == 0;
+  // Closed-loop sessions answer the states of a running device (commands are refused otherwise).
+  if (due && state == DeviceState::kRunning) offered_tick_ = tick_count_;
   LoopState& out = channel_.state.write_buffer();
   out.tick = tick_count_;
   out.time_ns = now_ns;
+  out.deadline_ns = deadline_ns;
+  out.period_ns = period_ns_;
+  out.state_due = due;
   out.state = state;
   out.estop = estop_applied_;
   out.fault = fault_;
@@ -541,6 +596,8 @@ void ControlLoop::publish(std::int64_t now_ns, std::int64_t /*wake_latency_ns*/)
   out.overruns = overruns_;
   out.rt_allocations = rt_allocations_;
   out.realtime = settings_.realtime;
+  for (std::size_t s = 0; s < answers_.size(); ++s) out.answers[s] = answers_[s].counts();
+  out.ready_ns = rt::monotonic_now_ns();
   channel_.state.publish();
 }
 

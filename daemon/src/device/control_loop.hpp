@@ -1,7 +1,7 @@
 // One device's real-time loop. Each tick (docs/design.md "One tick"):
 //   narrowed limits → maintenance handshake → driver.read → control events → e-stop / shutdown → newest
-//   targets → session timeouts → safe state / limits / rate limiting → driver.write →
-//   state, timing and black box out.
+//   targets → session timeouts → closed-loop answers → safe state / limits / rate limiting →
+//   driver.write → state (and a wake-up for its publisher), timing and black box out.
 // The safety invariants it keeps on every tick are listed in docs/safety.md.
 // Runs on the device's RT thread: no allocation, no locks, no DDS, no logging. Everything it
 // says goes out through DeviceChannel.
@@ -30,6 +30,7 @@ struct LoopSettings {
   Behavior shutdown_behavior = Behavior::kDamping;  // on SIGTERM (already mapped)
   std::int64_t shutdown_duration_ns = 300'000'000;  // how long the safe stop runs before disconnect
   std::uint64_t warmup_ticks = 500;                 // allocation counting starts after these
+  std::uint64_t state_every_ticks = 1;              // a state is offered to closed-loop sessions every N ticks
   bool realtime = false;                            // SCHED_FIFO was granted (reported only)
 };
 
@@ -64,6 +65,7 @@ class ControlLoop {
     control::MotorSet motors;
     std::array<float, kMaxJoints> default_kp{};
     std::array<float, kMaxJoints> default_kd{};
+    LowRateAction on_low_success_rate = LowRateAction::kWarn;
   };
 
   void take_limits() noexcept;
@@ -73,6 +75,7 @@ class ControlLoop {
   void take_feedback(std::int64_t now_ns) noexcept;
   void take_commands() noexcept;
   void expire_sessions(std::int64_t now_ns) noexcept;
+  void book_answers(std::int64_t now_ns) noexcept;
   void apply_targets() noexcept;
   void drop_stale(JointOwner& owner, const JointTarget& target) noexcept;
   void apply_target(std::size_t joint, const JointTarget& target, const SlotRuntime& slot) noexcept;
@@ -86,7 +89,7 @@ class ControlLoop {
   void latch_fault(const driver::FaultInfo& fault, std::int64_t now_ns, bool link_lost = false) noexcept;
   void latch_io_fault(driver::IoResult result, std::int64_t now_ns) noexcept;
   void write_command(std::int64_t deadline_ns, std::int64_t now_ns) noexcept;
-  void publish(std::int64_t now_ns, std::int64_t wake_latency_ns) noexcept;
+  void publish(std::int64_t deadline_ns, std::int64_t now_ns) noexcept;
   void record_black_box(std::int64_t now_ns, std::int64_t wake_latency_ns) noexcept;
   void post(const LoopEvent& event) noexcept;
   control::Gains gains_for(std::size_t joint, const SlotRuntime* slot) const noexcept;
@@ -108,6 +111,12 @@ class ControlLoop {
   std::array<JointOwner, kMaxJoints> owners_{};
   std::array<SlotRuntime, kMaxSessionsPerDevice> slots_{};
   std::array<control::MotionLimits, kMaxJoints> motion_limits_{};
+  std::array<AnswerBook, kMaxSessionsPerDevice> answers_{};
+  // The deadlines of the last ticks, by tick number modulo their count: what an answer's
+  // round trip is measured from.
+  std::array<std::int64_t, 64> recent_deadlines_{};
+  std::uint64_t offered_tick_ = 0;          // the newest tick whose state was offered for answering
+  std::int64_t answer_round_trip_ns_ = -1;  // this tick's, for TickTiming
 
   driver::Feedback feedback_{};
   driver::Feedback read_buffer_{};

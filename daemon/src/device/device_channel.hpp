@@ -12,9 +12,11 @@
 
 #include "control/command_validator.hpp"
 #include "control/joint_limiter.hpp"
+#include "device/answer_book.hpp"
 #include "robotd/driver/spsc_ring.hpp"
 #include "robotd/driver/types.hpp"
 #include "robotd/messages.hpp"
+#include "rt/tick_signal.hpp"
 #include "rt/triple_buffer.hpp"
 #include "session/session_table.hpp"
 
@@ -36,6 +38,7 @@ struct JointTarget {
 struct SlotActivity {
   std::uint32_t generation = 0;
   std::int64_t last_command_ns = 0;
+  std::uint64_t answers_tick = 0;  // the tick the slot's newest command answers (0 = none)
 };
 
 struct CommandSnapshot {
@@ -59,6 +62,8 @@ struct ControlEvent {
   control::MotorSet motors;
   std::array<float, kMaxJoints> default_kp{};  // per joint of the device; kNoGain = use the joint default
   std::array<float, kMaxJoints> default_kd{};
+  float min_success_rate = 0;  // start: closed loop, the least fraction of ticks answered in time (0 = none)
+  LowRateAction on_low_success_rate = LowRateAction::kWarn;
 };
 
 // --- Device (non-RT, its limits mutex held) → RT: the device's limits after a run-time narrowing.
@@ -80,6 +85,9 @@ struct LoopEvent {
     kSessionTimedOut,
     kSessionReleased,
     kSessionEndedByShutdown,
+    kSessionRateTooLow,  // ended with its fallback: its command success rate fell below its minimum
+    kSuccessRateLow,     // a closed-loop session's rate fell below its minimum (it warns only)
+    kSuccessRateRecovered,
     kFaultLatched,
     kEstopApplied,
     kEstopCleared,
@@ -91,20 +99,32 @@ struct LoopEvent {
   Behavior behavior = Behavior::kKeep;
   std::int64_t time_ns = 0;
   std::int64_t silence_ns = 0;  // timeout: time since the session's last command
+  float success_rate = 0;       // the success-rate events: the rate over the window
   bool by_estop_input = false;  // e-stop applied because the device's own e-stop input is pressed
   driver::FaultInfo fault;
 };
 
+/// Whether the loop ended a session with this event (its slot and generation say which).
+inline bool ends_session(LoopEvent::Type type) {
+  return type == LoopEvent::Type::kSessionTimedOut || type == LoopEvent::Type::kSessionReleased ||
+         type == LoopEvent::Type::kSessionEndedByShutdown || type == LoopEvent::Type::kSessionRateTooLow;
+}
+
 struct TickTiming {
-  std::int64_t wake_latency_ns = 0;  // actual wake − deadline
-  std::int64_t execution_ns = 0;     // wake → end of tick
-  std::int64_t period_ns = 0;        // wake − previous wake
+  std::int64_t wake_latency_ns = 0;        // actual wake − deadline
+  std::int64_t execution_ns = 0;           // wake → end of tick
+  std::int64_t period_ns = 0;              // wake − previous wake
+  std::int64_t answer_round_trip_ns = -1;  // a tick's deadline → robotd accepted its answer; -1 = none this tick
 };
 
 /// The loop's latest view of the device, published every tick.
 struct LoopState {
   std::uint64_t tick = 0;
-  std::int64_t time_ns = 0;
+  std::int64_t time_ns = 0;      // the tick's wake-up
+  std::int64_t deadline_ns = 0;  // the tick's deadline
+  std::int64_t period_ns = 0;    // the next tick is due at deadline_ns + period_ns
+  std::int64_t ready_ns = 0;     // when the loop handed this state over
+  bool state_due = false;        // a state to publish (every state_every_ticks-th tick)
   DeviceState state = DeviceState::kConnecting;
   bool estop = false;
   driver::FaultInfo fault;
@@ -113,6 +133,7 @@ struct LoopState {
   std::uint64_t overruns = 0;
   std::int64_t rt_allocations = -1;
   bool realtime = false;
+  std::array<AnswerCounts, kMaxSessionsPerDevice> answers{};  // per session slot
 };
 
 /// Black box: the last ticks in full, frozen on a fault so the moments before it survive.
@@ -143,6 +164,7 @@ struct DeviceChannel {
   driver::SpscRing<LoopEvent, 256> loop_events;
   driver::SpscRing<TickTiming, 16384> timings;
   rt::TripleBuffer<LoopState> state;
+  rt::TickSignal state_ready;  // RT → publisher: a new state is in `state`
 
   std::array<BlackBoxRecord, kBlackBoxTicks> black_box{};
   std::atomic<std::uint64_t> black_box_next{0};  // records written so far

@@ -14,6 +14,8 @@ device::ControlEvent session_start_event(const session::SessionRecord& record) {
   event.timeout_ns = static_cast<std::int64_t>(record.timeout_ms) * rt::kNsPerMs;
   event.granted_ns = record.granted_ns;
   event.motors = record.motors;
+  event.min_success_rate = record.min_command_success_rate;
+  event.on_low_success_rate = record.on_low_success_rate;
   event.default_kp.fill(device::kNoGain);
   event.default_kd.fill(device::kNoGain);
   for (std::size_t i = 0; i < record.motor_ids.size(); ++i) {

@@ -37,6 +37,18 @@ std::string state_refusal(DeviceState state, const std::string& device) {
   return "";
 }
 
+void add_answers(SessionInfo& info, const device::LoopState& state, const session::SessionRecord& record) {
+  const device::AnswerCounts& answers = state.answers[record.slot];
+  if (answers.generation != record.generation) return;  // the loop has not started this session yet
+  info.closed_loop = answers.closed_loop;
+  info.ticks_to_answer = answers.to_answer;
+  info.ticks_answered_in_time = answers.in_time;
+  info.ticks_answered_late = answers.late;
+  info.ticks_unanswered = answers.unanswered;
+  info.command_success_rate = answers.success_rate;
+  info.success_rate_low = answers.rate_low;
+}
+
 }  // namespace
 
 SessionService::SessionService(std::vector<device::Device*> devices, session::SessionLimits limits,
@@ -263,6 +275,9 @@ SessionStatus SessionService::status(std::int64_t now_ns) const {
     info.commands_accepted = record.commands_accepted;
     info.policy_name = record.policy_name;
     info.policy_file_name = record.policy_file_name;
+    info.min_command_success_rate = record.min_command_success_rate;
+    info.on_low_success_rate = record.on_low_success_rate;
+    if (!observers_.empty()) add_answers(info, observers_[record.device_index]->latest(), record);
     status.sessions.push_back(std::move(info));
   }
   status.state = status.sessions.empty() ? "idle" : "active";

@@ -16,6 +16,7 @@
 #include "device/device.hpp"
 #include "robotd/messages.hpp"
 #include "rt/monotonic_clock.hpp"
+#include "service/device_observer.hpp"
 #include "session/active_uuids.hpp"
 #include "session/session_table.hpp"
 
@@ -68,10 +69,14 @@ class SessionService {
   /// The device `name` names ("": the only one), if any. The devices never change: no lock, no
   /// allocation.
   std::optional<std::size_t> find_device(std::string_view name) const { return table_.find_device(name); }
+  /// Where status() reads each closed-loop session's answers: the device's loop state (its state
+  /// publisher, created after this service). Set once before any status() call.
+  void read_answers_from(std::vector<DeviceObserver*> observers) { observers_ = std::move(observers); }
   SessionStatus status(std::int64_t now_ns) const;
 
  private:
   std::vector<device::Device*> devices_;
+  std::vector<DeviceObserver*> observers_;
   mutable std::mutex mutex_;
   session::SessionTable table_;
   session::ActiveUuids active_;  // the uuids in table_, for is_active()

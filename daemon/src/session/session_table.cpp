@@ -92,6 +92,15 @@ Result<void> SessionTable::check_request(const RequestControlRequest& request,
     return refused("default_behavior " + std::to_string(static_cast<int>(request.default_behavior)) +
                    " is not one of KEEP_MODE=0, DAMPING_MODE=1, ZERO_TORQUE_MODE=2");
   }
+  // Written as a negation so that NaN is refused too.
+  if (!(request.min_command_success_rate >= 0 && request.min_command_success_rate <= 1)) {
+    return refused("min_command_success_rate " + std::to_string(request.min_command_success_rate) +
+                   " is outside 0..1 (the least fraction of ticks answered in time; 0 = no minimum)");
+  }
+  if (!is_valid(request.on_low_success_rate)) {
+    return refused("on_low_success_rate " + std::to_string(static_cast<int>(request.on_low_success_rate)) +
+                   " is not one of LOW_RATE_WARN=0, LOW_RATE_FALLBACK=1");
+  }
   if (!model.read_only_reason.empty()) {
     return refused("device '" + model.name + "' (" + model.driver + ") takes no commands: " + model.read_only_reason);
   }
@@ -181,6 +190,8 @@ Result<SessionRecord> SessionTable::grant(const RequestControlRequest& request, 
   record.default_kd = request.default_kd;
   record.policy_name = request.policy_name;
   record.policy_file_name = request.policy_file_name;
+  record.min_command_success_rate = request.min_command_success_rate;
+  record.on_low_success_rate = request.on_low_success_rate;
   record.granted_ns = now_ns;
   record.granted_wall_ns = wall_ns;
   record.last_command_ns = now_ns;

@@ -42,6 +42,8 @@ struct SessionRecord {
   std::vector<float> default_kd;
   std::string policy_name;  // who commands, as the request named it ("" = not named)
   std::string policy_file_name;
+  float min_command_success_rate = 0;  // closed loop: 0 = no minimum
+  LowRateAction on_low_success_rate = LowRateAction::kWarn;
   std::int64_t granted_ns = 0;       // CLOCK_MONOTONIC
   std::int64_t granted_wall_ns = 0;  // CLOCK_REALTIME, for display
   std::int64_t last_command_ns = 0;  // CLOCK_MONOTONIC of the last accepted command
