@@ -178,6 +178,25 @@ TEST_F(ClosedLoopTest, NextTickFailsOnceRobotdNoLongerListsTheSession) {
       << state.error().message;
 }
 
+TEST_F(ClosedLoopTest, ASessionRobotdNeverListedEndsAtTheSecondStatusWithoutIt) {
+  // The first status may predate the grant: it ends nothing.
+  peer_.write_session_status(false);
+  peer_.write_tick(1);
+  auto state = session_->next_tick(kPatience);
+  ASSERT_TRUE(state) << state.error().message;
+  EXPECT_EQ(state.value().tick, 1U);
+
+  // A later one without the session does (repeated: two written back to back may arrive as one).
+  const auto deadline = std::chrono::steady_clock::now() + kPatience;
+  Result<TickState> next = make_error(ErrorCode::kTimeout, "not yet");
+  while (!next && next.error().code == ErrorCode::kTimeout && std::chrono::steady_clock::now() < deadline) {
+    peer_.write_session_status(false);
+    next = session_->next_tick(50ms);
+  }
+  ASSERT_FALSE(next);
+  EXPECT_EQ(next.error().code, ErrorCode::kRefused) << next.error().message;
+}
+
 TEST(SendAligned, PublishesNoEarlierThanTheLeadBeforeATickOfTheDevicesPhase) {
   // A streaming session, no tick reader: the phase comes from /device_status (ticks due at
   // 0.3 ms + n × 1 ms).

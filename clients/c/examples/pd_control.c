@@ -44,13 +44,13 @@ int main(void) {
   robotd_session* session = NULL;
   robotd_session_request request;
   if (robotd_connect(NULL, &client) != ROBOTD_OK) return fail("connect");
-  /* Torques for every motor of "arm"; robotd damps the arm if the answers stop for 100 ms, and
+  /* Torques for every motor of "arm"; robotd damps the arm if the answers stop for 500 ms, and
    * warns when fewer than 95 % of the last 100 ticks were answered in time. */
   robotd_session_request_init(&request);
   request.device = "arm";
   request.mode = ROBOTD_MODE_TORQUE;
   request.on_timeout = ROBOTD_BEHAVIOR_DAMPING;
-  request.timeout_ms = 100;
+  request.timeout_ms = 500;
   request.on_release = ROBOTD_BEHAVIOR_DAMPING;
   request.closed_loop = true;
   request.min_command_success_rate = 0.95F;

@@ -20,13 +20,13 @@ int main() {
     std::fprintf(stderr, "cannot join DDS: %s\n", client.error().message.c_str());
     return 1;
   }
-  // Torques for every motor of "arm"; robotd damps the arm if the answers stop for 100 ms, and
+  // Torques for every motor of "arm"; robotd damps the arm if the answers stop for 500 ms, and
   // warns when fewer than 95 % of the last 100 ticks were answered in time.
   robotd::SessionRequest request;
   request.device = "arm";
   request.mode = robotd::ControlMode::kTorque;
   request.on_timeout = robotd::Behavior::kDamping;
-  request.timeout = 100ms;
+  request.timeout = 500ms;
   request.on_release = robotd::Behavior::kDamping;
   request.closed_loop = true;
   request.min_command_success_rate = 0.95F;

@@ -70,9 +70,10 @@ void TickLink::drain() {
     if (mine != status.sessions.end()) {
       info_ = std::move(*mine);
       listed_ = true;
-    } else if (listed_) {
+    } else if (listed_ || statuses_taken_ > 0) {
       ended_ = true;
     }
+    ++statuses_taken_;
   });
   if (device_statuses_ != nullptr) {
     device_statuses_->take_each([this](DeviceStatus&& status, const dds_sample_info_t& /*info*/) {

@@ -62,8 +62,12 @@ class TickLink {
   std::optional<TickState> newest_tick_;
   std::uint64_t last_returned_tick_ = 0;
   std::optional<SessionInfo> info_;
-  bool listed_ = false;  // robotd has listed the session in a /session_status seen here
-  bool ended_ = false;   // ... and a later one no longer does
+  // Whether robotd still lists the session. The first status this reader takes may be the one
+  // robotd kept (transient local) from before the grant; every later one was written after the
+  // reader matched, so after the grant: a status without the session ends it then.
+  std::uint64_t statuses_taken_ = 0;
+  bool listed_ = false;  // robotd has listed the session in a /session_status taken here
+  bool ended_ = false;   // a status taken later no longer does
   TickPhase device_phase_;
 };
 

@@ -17,9 +17,9 @@ KD = 1.0  # N·m·s/rad: damped (ζ ≈ 0.65 with the joint's own damping)
 
 def main():
     with robotd.Client() as client:
-        # Torques for every motor of "arm"; robotd damps the arm if the answers stop for 100 ms, and
+        # Torques for every motor of "arm"; robotd damps the arm if the answers stop for 500 ms, and
         # warns when fewer than 90 % of the last 100 ticks were answered in time.
-        with client.session(device="arm", mode="torque", on_timeout="damping", timeout=0.1, on_release="damping",
+        with client.session(device="arm", mode="torque", on_timeout="damping", timeout=0.5, on_release="damping",
                             closed_loop=True, min_command_success_rate=0.9, on_low_success_rate="warn") as session:
             reference, answered, first, last = None, 0, None, None
             for state in session.ticks(duration=3.0):

@@ -20,18 +20,20 @@ class ClientCore;
 class TickLink;
 }  // namespace detail
 
+// Every member has an initializer, so that a designated initializer may name any of them
+// (request_control({.device = "arm"})) without -Wmissing-field-initializers.
 struct SessionRequest {
-  std::string device;                   // "" = the daemon's only device
-  std::vector<std::int32_t> motor_ids;  // empty = every motor of the device
+  std::string device{};                   // "" = the daemon's only device
+  std::vector<std::int32_t> motor_ids{};  // empty = every motor of the device
   ControlMode mode = ControlMode::kPosition;
   Behavior on_timeout = Behavior::kDamping;
   std::chrono::milliseconds timeout{1000};
-  std::vector<float> default_kp;  // empty, or one per motor
-  std::vector<float> default_kd;
+  std::vector<float> default_kp{};  // empty, or one per motor
+  std::vector<float> default_kd{};
   Behavior on_release = Behavior::kKeep;  // what the destructor's release asks for
   // Who will command, shown to everyone in /session_status (e.g. "walk", "walk_v3.onnx").
-  std::string policy_name;
-  std::string policy_file_name;
+  std::string policy_name{};
+  std::string policy_file_name{};
   // Closed loop. closed_loop: the session answers ticks (next_tick, run_control_loop), so its
   // reader of /<device>/tick_state is created with it and request_control returns once that reader
   // has matched robotd's writer (at most the service timeout more): the first tick after the grant
@@ -49,12 +51,12 @@ struct SessionRequest {
 /// One command. Arrays are parallel to motor_ids (empty motor_ids = the session's motors in
 /// order). Which arrays are required depends on the session's mode (see docs/design.md, "Sessions").
 struct Command {
-  std::vector<std::int32_t> motor_ids;
-  std::vector<float> positions;   // rad
-  std::vector<float> velocities;  // rad/s
-  std::vector<float> kp;
-  std::vector<float> kd;
-  std::vector<float> torques;  // N·m
+  std::vector<std::int32_t> motor_ids{};
+  std::vector<float> positions{};   // rad
+  std::vector<float> velocities{};  // rad/s
+  std::vector<float> kp{};
+  std::vector<float> kd{};
+  std::vector<float> torques{};  // N·m
   /// run_control_loop: this is the loop's last answer (sent, then the loop ends). Not sent to robotd.
   bool finished = false;
 
