@@ -177,7 +177,9 @@ TEST_F(ClosedLoopTest, ASessionBelowItsMinimumSuccessRateFallsBackWhenItAskedTo)
   }
   EXPECT_TRUE(ended) << "the session kept its motors at a success rate of a third";
   // Its motors are free: another client may take them.
-  auto next = make_client("next").request_control({.device = "arm"});
+  SessionRequest next_request;
+  next_request.device = "arm";
+  auto next = make_client("next").request_control(next_request);
   EXPECT_TRUE(next) << next.error().message;
 }
 

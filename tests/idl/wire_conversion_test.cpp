@@ -28,12 +28,15 @@ inline auto fields(const KeyValue& m) { return std::tie(m.key, m.value); }
 inline auto fields(const SessionInfo& m) {
   return std::tie(m.uuid, m.node_name, m.device, m.motor_ids, m.control_mode, m.default_behavior, m.applied_behavior,
                   m.timeout_ms, m.time_left_ms, m.granted_at.sec, m.granted_at.nanosec, m.commands_accepted,
-                  m.policy_name, m.policy_file_name);
+                  m.policy_name, m.policy_file_name, m.closed_loop, m.ticks_to_answer, m.ticks_answered_in_time,
+                  m.ticks_answered_late, m.ticks_unanswered, m.command_success_rate, m.min_command_success_rate,
+                  m.on_low_success_rate, m.success_rate_low);
 }
 inline auto fields(const LoopStatistics& m) {
   return std::tie(m.rate_hz, m.realtime, m.ticks, m.overruns, m.window_ticks, m.period_p50_us, m.period_p99_us,
                   m.period_max_us, m.wake_latency_p50_us, m.wake_latency_p99_us, m.wake_latency_max_us,
-                  m.execution_p50_us, m.execution_p99_us, m.execution_max_us, m.rt_heap_allocations);
+                  m.execution_p50_us, m.execution_p99_us, m.execution_max_us, m.rt_heap_allocations,
+                  m.tick_deadline_steady_ns, m.period_ns);
 }
 inline auto fields(const CommandCounters& m) {
   return std::tie(m.received, m.accepted, m.clamped, m.rejected_unknown_session, m.rejected_wrong_device,
@@ -47,7 +50,12 @@ inline auto fields(const DeviceInfo& m) {
 }
 inline auto fields(const ControlCommand& m) {
   return std::tie(m.header, m.uuid, m.motor_ids, m.positions, m.velocities, m.kp, m.kd, m.torques, m.device,
-                  m.sent_steady_ns);
+                  m.sent_steady_ns, m.answers_tick);
+}
+inline auto fields(const TickState& m) {
+  return std::tie(m.header, m.tick, m.deadline_steady_ns, m.period_ns, m.state_ready_steady_ns, m.published_steady_ns,
+                  m.state, m.position, m.velocity, m.effort, m.has_imu, m.imu_orientation, m.imu_angular_velocity,
+                  m.imu_linear_acceleration);
 }
 inline auto fields(const JointState& m) { return std::tie(m.header, m.name, m.position, m.velocity, m.effort); }
 inline auto fields(const PoseStamped& m) { return std::tie(m.header, m.position, m.orientation); }
@@ -73,7 +81,8 @@ inline auto fields(const DeviceStatus& m) {
 }
 inline auto fields(const RequestControlRequest& m) {
   return std::tie(m.node_name, m.motor_ids, m.control_mode, m.default_behavior, m.timeout_ms, m.default_kp,
-                  m.default_kd, m.device, m.policy_name, m.policy_file_name);
+                  m.default_kd, m.device, m.policy_name, m.policy_file_name, m.min_command_success_rate,
+                  m.on_low_success_rate);
 }
 inline auto fields(const RequestControlResponse& m) {
   return std::tie(m.success, m.message, m.uuid, m.motor_ids, m.applied_behavior, m.device, m.session_id);
@@ -125,6 +134,15 @@ SessionInfo session(int n) {
   s.commands_accepted = std::uint64_t{9'000'000'000} + static_cast<std::uint32_t>(n);
   s.policy_name = "policy-" + std::to_string(n);
   s.policy_file_name = "/opt/policies/" + std::to_string(n) + ".onnx";
+  s.closed_loop = true;
+  s.ticks_to_answer = std::uint64_t{5'000'000'000} + static_cast<std::uint32_t>(n);
+  s.ticks_answered_in_time = 4'000'000'000U + static_cast<std::uint32_t>(n);
+  s.ticks_answered_late = 300U + static_cast<std::uint32_t>(n);
+  s.ticks_unanswered = 20U + static_cast<std::uint32_t>(n);
+  s.command_success_rate = 0.5F + 0.125F * static_cast<float>(n);
+  s.min_command_success_rate = 0.25F;
+  s.on_low_success_rate = LowRateAction::kFallback;
+  s.success_rate_low = true;
   return s;
 }
 
@@ -154,8 +172,27 @@ T sample();
 
 template <>
 ControlCommand sample() {
-  return ControlCommand{header(1),  "uuid",       {1, 2},       {0.1f, 0.2f}, {0.3f, 0.4f},
-                        {5.f, 6.f}, {0.5f, 0.6f}, {1.1f, 1.2f}, "arm",        123'456'789'012};
+  return ControlCommand{header(1),    "uuid",       {1, 2}, {0.1f, 0.2f},    {0.3f, 0.4f}, {5.f, 6.f},
+                        {0.5f, 0.6f}, {1.1f, 1.2f}, "arm",  123'456'789'012, 9'876'543'210};
+}
+template <>
+TickState sample() {
+  TickState s;
+  s.header = header(12);
+  s.tick = 9'000'000'001;
+  s.deadline_steady_ns = 1'000'000'000'123;
+  s.period_ns = 1'000'000;
+  s.state_ready_steady_ns = 1'000'000'010'000;
+  s.published_steady_ns = 1'000'000'020'000;
+  s.state = DeviceState::kRunning;
+  s.position = {0.5, -0.5};
+  s.velocity = {1.5, -1.5};
+  s.effort = {2.5, -2.5};
+  s.has_imu = true;
+  s.imu_orientation = Quaternion{0.1, 0.2, 0.3, 0.9};
+  s.imu_angular_velocity = Vector3{1, 2, 3};
+  s.imu_linear_acceleration = Vector3{4, 5, 9.81};
+  return s;
 }
 template <>
 JointState sample() {
@@ -210,8 +247,8 @@ DeviceStatus sample() {
   s.fault_code = -17;
   s.fault_text = "over temperature";
   s.estop_engaged = true;
-  s.loop = LoopStatistics{1000.0, true, 1'000'001, 3,    4096,  999.5f, 1001.5f, 1020.f,
-                          12.f,   30.f, 55.f,      80.f, 150.f, 210.f,  0};
+  s.loop = LoopStatistics{1000.0, true, 1'000'001, 3,     4096,  999.5f, 1001.5f,           1020.f,   12.f,
+                          30.f,   55.f, 80.f,      150.f, 210.f, 0,      1'000'000'000'123, 1'000'000};
   s.commands = CommandCounters{101, 90, 7, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
   s.driver_values = {{"bus_voltage_v", "24.1"}, {"temperature_c", "41"}};
   s.joint_states_published = 123456;
@@ -219,9 +256,18 @@ DeviceStatus sample() {
 }
 template <>
 RequestControlRequest sample() {
-  return RequestControlRequest{"node", {3, 4},        ControlMode::kTorque, Behavior::kZeroTorque,
-                               2500,   {30.f, 31.f},  {1.f, 1.5f},          "arm",
-                               "walk", "walk_v3.onnx"};
+  return RequestControlRequest{"node",
+                               {3, 4},
+                               ControlMode::kTorque,
+                               Behavior::kZeroTorque,
+                               2500,
+                               {30.f, 31.f},
+                               {1.f, 1.5f},
+                               "arm",
+                               "walk",
+                               "walk_v3.onnx",
+                               0.95F,
+                               LowRateAction::kFallback};
 }
 template <>
 RequestControlResponse sample() {
@@ -291,8 +337,8 @@ template <class T>
 class WireConversion : public ::testing::Test {};
 
 using AllWireTypes =
-    ::testing::Types<ControlCommand, JointState, Imu, PoseStamped, Vector3, Quaternion, Joy, PolicyData, SessionStatus,
-                     DeviceStatus, RequestControlRequest, RequestControlResponse, ReleaseControlRequest,
+    ::testing::Types<ControlCommand, TickState, JointState, Imu, PoseStamped, Vector3, Quaternion, Joy, PolicyData,
+                     SessionStatus, DeviceStatus, RequestControlRequest, RequestControlResponse, ReleaseControlRequest,
                      ReleaseControlResponse, GetAvailableMotorsRequest, GetAvailableMotorsResponse, ResetZeroRequest,
                      ResetZeroResponse, EstopRequest, EstopResponse, ListDevicesRequest, ListDevicesResponse,
                      DeviceCallRequest, DeviceCallResponse>;

@@ -199,6 +199,15 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   session.granted_at = Time{7, 8};
   session.commands_accepted = 0x0102030405060708;
   session.policy_name = "walk";
+  session.closed_loop = true;
+  session.ticks_to_answer = 100;
+  session.ticks_answered_in_time = 97;
+  session.ticks_answered_late = 1;
+  session.ticks_unanswered = 2;
+  session.command_success_rate = 0.97F;
+  session.min_command_success_rate = 0.9F;
+  session.on_low_success_rate = LowRateAction::kFallback;
+  session.success_rate_low = false;
   SessionStatus status;
   status.header = Header{Time{5, 6}, "f"};
   status.state = "active";
@@ -217,8 +226,10 @@ TEST(WireLayout, SessionStatusNestsSessionInfoStructsInASequence) {
   expected.count(1);  // sessions
   expected.string("u1").string("node").string("arm").count(2).i32(3).i32(4);
   expected.i32(2).i32(1).i32(0).i32(500).i32(250).i32(7).u32(8);
-  expected.u64(0x0102030405060708);    // 8-aligned relative to the body start
-  expected.string("walk").string("");  // the session's policy_name, policy_file_name
+  expected.u64(0x0102030405060708);                       // 8-aligned relative to the body start
+  expected.string("walk").string("");                     // the session's policy_name, policy_file_name
+  expected.boolean(true).u64(100).u64(97).u64(1).u64(2);  // closed loop: its ticks (8-aligned after the flag)
+  expected.f32(0.97F).f32(0.9F).i32(1).boolean(false);    // rate, minimum, FALLBACK, not low
   expected.u64(9).u64(10).count(1).string("estop").u64(11).u64(12).u64(13);  // surface, after the PI Plus fields
   EXPECT_TRUE(same_bytes(expected.bytes(), take_serialized(raw.reader.get())));
 }
@@ -295,6 +306,7 @@ Xcdr1 request_body(std::uint64_t guid, std::int64_t sequence) {
   bytes.u64(guid).i64(sequence);
   bytes.string("n").count(2).i32(1).i32(2).i32(1).i32(2).i32(250).count(1).f32(1.5f).count(0).string("dev");
   bytes.string("").string("");  // policy_name, policy_file_name
+  bytes.f32(0.0F).i32(0);       // min_command_success_rate, on_low_success_rate
   return bytes;
 }
 
