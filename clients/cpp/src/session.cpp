@@ -97,7 +97,8 @@ Result<TickState> Session::next_tick(std::chrono::milliseconds timeout) {
 Result<void> Session::answer(const TickState& state, const Command& command) {
   if (state.header.frame_id != device_) {
     return make_error(ErrorCode::kInvalidArgument, "the TickState is of device '" + state.header.frame_id +
-                                                       "': expected one of '" + device_ + "', this session's device");
+                                                       "': expected one of '" + device_ +
+                                                       "', the device this session commands");
   }
   if (state.tick == 0) {
     return make_error(ErrorCode::kInvalidArgument,
