@@ -104,7 +104,7 @@ TEST_F(ClosedLoopTest, AnAnswerToAnotherDevicesTickIsRefusedAndNothingIsSent) {
 
 TEST_F(ClosedLoopTest, ControlLoopAnswersEachTickUntilTheLawFinishesAndCountsGaps) {
   // Ticks 1, 2, 3, then 7 (4..6 never reach the client), 8, ...
-  const auto playing = play_ticks(1, [](std::uint64_t answered) { return answered == 3 ? 7 : answered + 1; });
+  auto playing = play_ticks(1, [](std::uint64_t answered) { return answered == 3 ? 7 : answered + 1; });
   std::vector<std::uint64_t> seen;
   auto report = session_->run_control_loop(
       [&](const TickState& state) {
@@ -126,6 +126,8 @@ TEST_F(ClosedLoopTest, ControlLoopAnswersEachTickUntilTheLawFinishesAndCountsGap
 
   // Each answer named its tick and carried what the law returned for it; none came after the last.
   std::this_thread::sleep_for(200ms);
+  playing.request_stop();
+  playing.join();  // answers_ is the player's until then
   ASSERT_GE(answers_.size(), 9U);
   for (std::size_t i = 0; i < answers_.size(); ++i) {
     EXPECT_EQ(answers_[i].answers_tick, seen[i]);
