@@ -10,9 +10,13 @@
 namespace robotd::rt {
 namespace {
 
-// Touch this much stack up front so the loop never page-faults on it (with mlockall the
-// pages then stay resident).
+// Touch this much stack up front so the loop never page-faults on it: mlockall locks a page once
+// it is touched (MCL_ONFAULT), so these pages then stay resident. The loop's deepest stack, driver
+// read() and write() included, measured 8 KiB beyond the prefault's own frame; 256 KiB keeps the
+// margin robotd always had.
 constexpr std::size_t kStackPrefaultBytes = std::size_t{256} * 1024;
+// The prefaulted part and the ordinary thread stack above it, for the frames that start the loop.
+constexpr std::size_t kLoopStackBytes = kStackPrefaultBytes + driver::kThreadStackBytes;
 
 void prefault_stack() {
   std::array<volatile unsigned char, kStackPrefaultBytes> stack{};
@@ -26,7 +30,6 @@ struct Setup {
 
 Setup configure_current_thread(const ThreadSettings& settings) {
   Setup setup;
-  pthread_setname_np(pthread_self(), settings.name.substr(0, 15).c_str());
   std::string& report = setup.start.report;
 
   if (settings.cpu >= 0) {
@@ -65,15 +68,19 @@ Setup configure_current_thread(const ThreadSettings& settings) {
 
 }  // namespace
 
-Result<ThreadStart> start_thread(std::thread& thread, const ThreadSettings& settings, std::function<void()> body) {
+Result<ThreadStart> start_thread(driver::NamedThread& thread, const ThreadSettings& settings,
+                                 std::function<void()> body) {
   std::promise<Setup> ready;
   auto ready_future = ready.get_future();
-  thread = std::thread([&ready, settings, body = std::move(body)] {
-    const Setup setup = configure_current_thread(settings);
-    const bool run = setup.ok;
-    ready.set_value(setup);  // `ready` must not be touched after this line
-    if (run) body();
-  });
+  thread = driver::NamedThread(
+      settings.name,
+      [&ready, settings, body = std::move(body)] {
+        const Setup setup = configure_current_thread(settings);
+        const bool run = setup.ok;
+        ready.set_value(setup);  // `ready` must not be touched after this line
+        if (run) body();
+      },
+      kLoopStackBytes);
   const Setup setup = ready_future.get();
   if (!setup.ok) {
     thread.join();

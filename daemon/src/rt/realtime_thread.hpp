@@ -3,8 +3,8 @@
 
 #include <functional>
 #include <string>
-#include <thread>
 
+#include "robotd/driver/named_thread.hpp"
 #include "robotd/result.hpp"
 
 namespace robotd::rt {
@@ -24,8 +24,9 @@ struct ThreadStart {
 };
 
 /// Starts `body` on a new thread configured per `settings`: SCHED_FIFO at `priority` (if the
-/// policy is not kOff), CPU affinity, and a prefaulted stack. Returns once the thread is set
-/// up. With kRequire, a refused SCHED_FIFO or affinity is an error and `body` never runs.
-Result<ThreadStart> start_thread(std::thread& thread, const ThreadSettings& settings, std::function<void()> body);
+/// policy is not kOff), CPU affinity, and a stack of 512 KiB whose first 256 KiB are prefaulted. Returns once the
+/// thread is set up. With kRequire, a refused SCHED_FIFO or affinity is an error and `body` never runs.
+Result<ThreadStart> start_thread(driver::NamedThread& thread, const ThreadSettings& settings,
+                                 std::function<void()> body);
 
 }  // namespace robotd::rt

@@ -5,8 +5,8 @@
 #include <atomic>
 #include <functional>
 #include <string>
-#include <thread>
 
+#include "robotd/driver/named_thread.hpp"
 #include "robotd/result.hpp"
 
 namespace robotd::transport {
@@ -35,7 +35,7 @@ class IoThread {
 
  private:
   int wake_fd_ = -1;
-  std::thread thread_;
+  driver::NamedThread thread_;
   std::atomic<bool> stop_{false};
 };
 
