@@ -10,14 +10,6 @@
 namespace robotd::rt {
 namespace {
 
-// Touch this much stack up front so the loop never page-faults on it: mlockall locks a page once
-// it is touched (MCL_ONFAULT), so these pages then stay resident. The loop's deepest stack, driver
-// read() and write() included, measured 8 KiB beyond the prefault's own frame; 256 KiB keeps the
-// margin robotd always had.
-constexpr std::size_t kStackPrefaultBytes = std::size_t{256} * 1024;
-// The prefaulted part and the ordinary thread stack above it, for the frames that start the loop.
-constexpr std::size_t kLoopStackBytes = kStackPrefaultBytes + driver::kThreadStackBytes;
-
 void prefault_stack() {
   std::array<volatile unsigned char, kStackPrefaultBytes> stack{};
   for (std::size_t i = 0; i < stack.size(); i += 4096) stack[i] = 1;
