@@ -73,9 +73,10 @@ inline constexpr int kDefaultReceiveThreadPriority = 10;
 
 /// The stack of each of Cyclone DDS's threads in robotd. How it was chosen: the deepest of them,
 /// measured as the resident part of its stack mapping (pages are locked as touched) with the
-/// 7-device demo serving clients, was 20 KiB (dq.builtins, discovery). With DDS Security the
-/// handshake's OpenSSL signature checks run on these threads too, so the margin is twice that of
-/// robotd's own threads (driver::kThreadStackBytes). Untouched pages cost address space only.
+/// 7-device demo serving clients, was 20 KiB (dq.builtins, discovery); with DDS Security on, the
+/// handshake thread (fsm) used 16 KiB and the others no more than without. Cyclone is not robotd's
+/// code and another version may go deeper, so the margin is twice that of robotd's own threads
+/// (driver::kThreadStackBytes). Untouched pages cost address space only.
 inline constexpr std::size_t kCycloneThreadStackBytes = std::size_t{512} * 1024;
 
 struct Config {
