@@ -24,8 +24,10 @@ int lock_segments(dl_phdr_info* info, std::size_t /*size*/, void* data) {
     if (header.p_type != PT_LOAD || header.p_memsz == 0) continue;
     const std::uintptr_t start = info->dlpi_addr + header.p_vaddr;
     const std::uintptr_t first_page = start & ~(lock.page - 1);
-    // mlock faults the pages in (without MCL_ONFAULT's laziness) and keeps them.
-    if (mlock(reinterpret_cast<const void*>(first_page), start + header.p_memsz - first_page) != 0) {
+    // mlock faults the pages in (without MCL_ONFAULT's laziness) and keeps them. The loader hands
+    // out addresses as integers, hence the cast.
+    const auto* first = reinterpret_cast<const void*>(first_page);  // NOLINT(performance-no-int-to-ptr)
+    if (mlock(first, start + header.p_memsz - first_page) != 0) {
       const char* name = info->dlpi_name[0] != '\0' ? info->dlpi_name : "the executable";
       lock.failure = std::string("mlock of ") + name + " failed (" + std::generic_category().message(errno) + "); ";
       return 1;

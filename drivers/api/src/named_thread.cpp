@@ -39,7 +39,7 @@ NamedThread::NamedThread(const std::string& name, std::function<void()> body, st
   if (rc == 0) rc = pthread_create(&handle_, &attributes, run, start.get());
   pthread_attr_destroy(&attributes);
   if (rc != 0) throw std::system_error(rc, std::generic_category(), "cannot start thread " + name);
-  start.release();  // the thread owns it now
+  [[maybe_unused]] Start* owned_by_the_thread = start.release();
   joinable_ = true;
 }
 
