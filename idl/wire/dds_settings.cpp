@@ -1,6 +1,7 @@
 #include "wire/dds_settings.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cstdlib>
@@ -65,6 +66,28 @@ void write_security(std::ostream& xml, const DdsSecurityFiles& files) {
       << "</Cryptographic></Security>";
 }
 
+// Cyclone 0.10 accepts properties only for these thread names ("unknown thread" otherwise); the
+// per-socket receive threads (recvUC, recvMC) that MultipleReceiveThreads starts are not among
+// them, which is one more reason robotd runs a single receive thread.
+constexpr std::array<std::string_view, 6> kCycloneThreads{"recv", "tev", "gc", "dq.builtins", "dq.user", "fsm"};
+
+void write_threads(std::ostream& xml, const DdsSettings& settings) {
+  if (settings.receive_thread_priority <= 0 && settings.thread_stack_bytes == 0) return;
+  xml << "<Threads>";
+  for (const std::string_view name : kCycloneThreads) {
+    const bool scheduled = name == "recv" && settings.receive_thread_priority > 0;
+    if (!scheduled && settings.thread_stack_bytes == 0) continue;
+    xml << "<Thread Name=\"" << name << "\">";
+    if (scheduled) {
+      xml << "<Scheduling><Class>realtime</Class><Priority>" << settings.receive_thread_priority
+          << "</Priority></Scheduling>";
+    }
+    if (settings.thread_stack_bytes > 0) xml << "<StackSize>" << settings.thread_stack_bytes << "B</StackSize>";
+    xml << "</Thread>";
+  }
+  xml << "</Threads>";
+}
+
 bool looks_like_address(std::string_view text) {
   return !text.empty() && text.find_first_not_of("0123456789.:abcdefABCDEF") == std::string_view::npos &&
          (text.find('.') != std::string_view::npos || text.find(':') != std::string_view::npos);
@@ -91,10 +114,9 @@ std::string to_cyclone_xml(const DdsSettings& settings) {
   }
   xml << "</Discovery>";
   if (settings.receive_thread_priority > 0) {
-    xml << "<Internal><MultipleReceiveThreads>false</MultipleReceiveThreads></Internal><Threads><Thread Name=\"recv\">"
-        << "<Scheduling><Class>realtime</Class><Priority>" << settings.receive_thread_priority
-        << "</Priority></Scheduling></Thread></Threads>";
+    xml << "<Internal><MultipleReceiveThreads>false</MultipleReceiveThreads></Internal>";
   }
+  write_threads(xml, settings);
   if (settings.security.enabled()) write_security(xml, settings.security);
   xml << "</Domain></CycloneDDS>";
   return xml.str();

@@ -4,6 +4,7 @@
 // Security files the participant authenticates, is access-controlled and encrypts its traffic.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct DdsSettings {
   // on the host cannot keep it from draining its sockets (robotd: docs/reliability.md, "Command
   // flood"). 0: Cyclone's default threads and scheduling.
   int receive_thread_priority = 0;
+  // > 0: the stack size of each of Cyclone's threads (Threads/Thread/StackSize); robotd sets it so
+  // that no Cyclone thread reserves the process default (8 MiB). 0: the system default.
+  std::size_t thread_stack_bytes = 0;
   std::string cyclonedds_xml;  // non-empty: used verbatim instead of the fields above
   DdsSecurityFiles security;   // any file named: DDS Security on, as the domain's <Security>
 };

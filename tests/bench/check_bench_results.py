@@ -29,6 +29,8 @@ REQUIRED = [
       for figure in ("p50_ms", "p99_ms", "max_ms", "wire_p50_ms", "wire_p99_ms", "wire_max_ms")),
     *(f"estop_{vendor}_recover_reached_fraction" for vendor in ("piper", "parol6", "realman", "xarm", "hightorque")),
     *(f"estop_{vendor}_reset_zero_p99_ms" for vendor in ("piper", "hightorque")),
+    *(f"footprint_{case}_{figure}" for case in ("demo7", "sim4")
+      for figure in ("rss_mib", "locked_resident_mib", "locked_space_mib", "threads")),
 ]
 
 

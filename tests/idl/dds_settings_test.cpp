@@ -120,6 +120,20 @@ TEST(ToCycloneXml, ReceiveThreadPriorityGivesOneRealtimeReceiveThread) {
   EXPECT_THAT(to_cyclone_xml(DdsSettings{}), Not(HasSubstr("<Threads>")));
 }
 
+TEST(ToCycloneXml, ThreadStackSizeGoesToEveryCycloneThread) {
+  DdsSettings settings;
+  settings.receive_thread_priority = 7;
+  settings.thread_stack_bytes = 65536;
+  const std::string xml = to_cyclone_xml(settings);
+  EXPECT_THAT(xml, HasSubstr("<Thread Name=\"recv\"><Scheduling><Class>realtime</Class><Priority>7</Priority>"
+                             "</Scheduling><StackSize>65536B</StackSize></Thread>"));
+  for (const char* name : {"tev", "gc", "dq.builtins", "dq.user", "fsm"}) {
+    EXPECT_THAT(xml, HasSubstr(std::string("<Thread Name=\"") + name + "\"><StackSize>65536B</StackSize></Thread>"));
+  }
+  settings.receive_thread_priority = 0;
+  EXPECT_THAT(to_cyclone_xml(settings), HasSubstr("<Thread Name=\"recv\"><StackSize>65536B</StackSize></Thread>"));
+}
+
 TEST(ToCycloneXml, NoSecurityFilesNoSecuritySection) {
   EXPECT_THAT(to_cyclone_xml(DdsSettings{}), Not(HasSubstr("Security")));
 }

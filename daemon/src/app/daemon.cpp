@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "plugin/plugin_loader.hpp"
+#include "rt/memory_lock.hpp"
 #include "rt/realtime_environment.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
@@ -45,6 +46,8 @@ Result<void> Daemon::start() {
       });
       if (required) return make_error(ErrorCode::kRefused, "a device has realtime: require, but " + failure);
       spdlog::warn("{}", failure);
+    } else {
+      memory_locked_ = true;
     }
   }
   if (config_.dds.receive_thread_priority > 0 && !environment.can_use_fifo) {
@@ -87,6 +90,10 @@ Result<void> Daemon::start_devices() {
     if (auto configured = device->configure(); !configured) {
       if (auto result = fail(configured.error()); !result) return result;
       continue;
+    }
+    if (memory_locked_) {
+      // The driver plugin was just loaded: its code is locked before its loop first runs it.
+      if (const std::string failure = rt::lock_loaded_objects(); !failure.empty()) spdlog::warn("{}", failure);
     }
     if (auto started = device->start(); !started) {
       if (auto result = fail(started.error()); !result) return result;

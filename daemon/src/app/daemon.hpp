@@ -48,6 +48,7 @@ class Daemon {
 
   config::Config config_;
   std::optional<rt::CpuLatencyRequest> cpu_latency_;
+  bool memory_locked_ = false;  // mlockall succeeded: loaded objects are locked before each loop starts
   std::vector<std::unique_ptr<device::Device>> devices_;
   std::vector<device::Device*> device_ptrs_;
   std::vector<std::unique_ptr<device::BlackBox>> black_boxes_;

@@ -18,7 +18,7 @@ void SystemdNotifier::start_watchdog(std::function<std::string()> problem) {
   if (sd_watchdog_enabled(0, &interval_us) <= 0) return;
   const auto period = std::chrono::microseconds(interval_us / 2);
   spdlog::info("systemd watchdog: pinging every {} ms while every loop ticks", period.count() / 1000);
-  thread_ = std::thread([this, period, problem = std::move(problem)] {
+  thread_ = driver::NamedThread("watchdog", [this, period, problem = std::move(problem)] {
     std::unique_lock lock(mutex_);
     while (!wake_.wait_for(lock, period, [this] { return stopping_; })) {
       const std::string trouble = problem();

@@ -8,7 +8,8 @@
 #include <functional>
 #include <mutex>
 #include <string>
-#include <thread>
+
+#include "robotd/driver/named_thread.hpp"
 
 namespace robotd::app {
 
@@ -26,7 +27,7 @@ class SystemdNotifier {
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
-  std::thread thread_;
+  driver::NamedThread thread_;
 };
 
 }  // namespace robotd::app

@@ -158,6 +158,7 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
   config.origin = origin;
   JsonReader root(*document, "", errors);
   config.dds.receive_thread_priority = kDefaultReceiveThreadPriority;
+  config.dds.thread_stack_bytes = kCycloneThreadStackBytes;
   if (auto daemon = root.object("daemon")) read_daemon(*daemon, config.daemon);
   if (auto dds = root.object("dds")) read_dds(*dds, config.dds);
   if (auto joystick = root.object("joystick")) {

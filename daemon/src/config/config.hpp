@@ -3,6 +3,7 @@
 // silently except keys that are absent.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -69,6 +70,14 @@ struct DaemonConfig {
 /// robotd's DDS receive thread runs at this SCHED_FIFO priority unless `dds.receive_thread_priority`
 /// says otherwise: below every loop, above every ordinary process (docs/configuration.md).
 inline constexpr int kDefaultReceiveThreadPriority = 10;
+
+/// The stack of each of Cyclone DDS's threads in robotd. How it was chosen: the deepest of them,
+/// measured as the resident part of its stack mapping (pages are locked as touched) with the
+/// 7-device demo serving clients, was 20 KiB (dq.builtins, discovery); with DDS Security on, the
+/// handshake thread (fsm) used 16 KiB and the others no more than without. Cyclone is not robotd's
+/// code and another version may go deeper, so the margin is twice that of robotd's own threads
+/// (driver::kThreadStackBytes). Untouched pages cost address space only.
+inline constexpr std::size_t kCycloneThreadStackBytes = std::size_t{512} * 1024;
 
 struct Config {
   std::string origin;  // file path, for messages

@@ -34,7 +34,7 @@ Result<void> CommandIntake::start() {
   dds_waitset_attach(waitset_.get(), dds_create_readcondition(reader_->handle(), DDS_ANY_STATE), 0);
   stop_condition_ = dds_create_guardcondition(participant_.handle());
   dds_waitset_attach(waitset_.get(), stop_condition_, 0);
-  thread_ = std::thread([this] { run(); });
+  thread_ = driver::NamedThread("cmd-intake", [this] { run(); });
   return {};
 }
 
@@ -46,7 +46,6 @@ void CommandIntake::stop() {
 }
 
 void CommandIntake::run() {
-  pthread_setname_np(pthread_self(), "cmd-intake");
   while (!stopping_.load()) {
     dds_waitset_wait(waitset_.get(), nullptr, 0, DDS_MSECS(100));
     reader_->take_each([this](ControlCommand&& command, const dds_sample_info_t& /*info*/) {

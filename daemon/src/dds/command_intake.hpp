@@ -8,10 +8,10 @@
 
 #include <atomic>
 #include <memory>
-#include <thread>
 #include <vector>
 
 #include "dds/command_gate.hpp"
+#include "robotd/driver/named_thread.hpp"
 #include "wire/entity.hpp"
 #include "wire/topic_io.hpp"
 
@@ -44,7 +44,7 @@ class CommandIntake {
   wire::Entity waitset_;
   dds_entity_t stop_condition_ = 0;
   std::atomic<bool> stopping_{false};
-  std::thread thread_;
+  driver::NamedThread thread_;
 };
 
 }  // namespace robotd::dds

@@ -73,7 +73,7 @@ Result<void> ServiceHost::create_servers(SurfaceCounterSet& counters) {
 }
 
 void ServiceHost::start() {
-  thread_ = std::thread([this] { run(); });
+  thread_ = driver::NamedThread("services", [this] { run(); });
 }
 
 void ServiceHost::stop() {
@@ -134,11 +134,12 @@ void ServiceHost::serve_on_worker(Service<Req, Resp>& service, Handler handler) 
       return;
     }
     auto done = std::make_shared<std::atomic<bool>>(false);
-    workers_.push_back(Worker{std::thread([this, &service, handler, id, request = std::move(request), done] {
-                                const Resp response = handler(request);
-                                reply(service, id, response, is_refusal(response));
-                                done->store(true);
-                              }),
+    workers_.push_back(Worker{driver::NamedThread("service-call",
+                                                  [this, &service, handler, id, request = std::move(request), done] {
+                                                    const Resp response = handler(request);
+                                                    reply(service, id, response, is_refusal(response));
+                                                    done->store(true);
+                                                  }),
                               done});
   });
 }
@@ -168,7 +169,6 @@ void ServiceHost::reap_workers(bool all) {
 }
 
 void ServiceHost::run() {
-  pthread_setname_np(pthread_self(), "services");
   while (!stopping_.load()) {
     dds_waitset_wait(waitset_.get(), nullptr, 0, DDS_MSECS(200));
     serve(request_control_, [this](const RequestControlRequest& r) { return sessions_.request_control(r); });

@@ -9,10 +9,10 @@
 #include <list>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include "app/throttled_log.hpp"
 #include "dds/surface_counters.hpp"
+#include "robotd/driver/named_thread.hpp"
 #include "service/device_services.hpp"
 #include "service/session_service.hpp"
 #include "wire/service.hpp"
@@ -69,11 +69,11 @@ class ServiceHost {
   wire::Entity waitset_;
   dds_entity_t stop_condition_ = 0;
   std::atomic<bool> stopping_{false};
-  std::thread thread_;
+  driver::NamedThread thread_;
   app::ThrottledLog log_;
 
   struct Worker {
-    std::thread thread;
+    driver::NamedThread thread;
     std::shared_ptr<std::atomic<bool>> done;
   };
   std::mutex workers_mutex_;

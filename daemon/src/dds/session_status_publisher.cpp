@@ -23,7 +23,7 @@ SessionStatusPublisher::~SessionStatusPublisher() { stop(); }
 void SessionStatusPublisher::start(const service::SessionService& sessions, const SurfaceCounterSet& surface) {
   sessions_ = &sessions;
   surface_ = &surface;
-  thread_ = std::thread([this] { run(); });
+  thread_ = driver::NamedThread("session-status", [this] { run(); });
 }
 
 void SessionStatusPublisher::changed() {
@@ -55,7 +55,6 @@ SessionStatus SessionStatusPublisher::current() const {
 }
 
 void SessionStatusPublisher::run() {
-  pthread_setname_np(pthread_self(), "session-status");
   std::unique_lock lock(mutex_);
   while (!stopping_) {
     lock.unlock();

@@ -7,9 +7,9 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
-#include <thread>
 
 #include "dds/surface_counters.hpp"
+#include "robotd/driver/named_thread.hpp"
 #include "service/session_service.hpp"
 #include "wire/topic_io.hpp"
 
@@ -42,7 +42,7 @@ class SessionStatusPublisher {
   std::condition_variable wake_;
   bool changed_ = false;
   bool stopping_ = false;
-  std::thread thread_;
+  driver::NamedThread thread_;
 };
 
 }  // namespace robotd::dds

@@ -86,7 +86,7 @@ class Device {
   control::DeviceModel model_;
   std::unique_ptr<DeviceChannel> channel_;
   std::unique_ptr<ControlLoop> loop_;
-  std::thread thread_;
+  driver::NamedThread thread_;
   LoopRunner runner_ = LoopRunner::kThread;
   rt::ThreadStart thread_start_;
   std::mutex maintenance_mutex_;

@@ -64,7 +64,7 @@ JoystickSource::~JoystickSource() {
 }
 
 void JoystickSource::start() {
-  thread_ = std::thread([this] { run(); });
+  thread_ = driver::NamedThread("joystick", [this] { run(); });
 }
 
 void JoystickSource::stop() {
@@ -80,7 +80,6 @@ void JoystickSource::stop() {
 }
 
 void JoystickSource::run() {
-  pthread_setname_np(pthread_self(), "joystick");
   while (!stopping_.load()) {
     const std::int64_t now = rt::monotonic_now_ns();
     if (fd_ < 0 && !replay_finished_ && now >= next_open_ns_) try_open();

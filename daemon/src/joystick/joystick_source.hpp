@@ -15,12 +15,12 @@
 #include <cstdint>
 #include <functional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "app/throttled_log.hpp"
 #include "joystick/joystick_config.hpp"
 #include "joystick/joystick_mapper.hpp"
+#include "robotd/driver/named_thread.hpp"
 
 namespace robotd::joystick {
 
@@ -70,7 +70,7 @@ class JoystickSource {
   std::int64_t next_publish_ns_ = 0;
   std::vector<unsigned char> buffer_;
   std::atomic<bool> stopping_{false};
-  std::thread thread_;
+  driver::NamedThread thread_;
 };
 
 }  // namespace robotd::joystick

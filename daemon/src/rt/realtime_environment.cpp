@@ -4,7 +4,6 @@
 #include <fcntl.h>
 #include <fstream>
 #include <sstream>
-#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/utsname.h>
 #include <system_error>
@@ -70,13 +69,6 @@ std::string describe(const EnvironmentReport& report) {
       << (report.can_use_fifo ? "permitted" : "not permitted") << "; CPU governor " << report.cpu_governor << "; "
       << report.cpu_count << " CPUs online";
   return out.str();
-}
-
-std::string lock_memory() {
-  if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) return "";
-  return std::string("mlockall failed (") + std::generic_category().message(errno) +
-         "): pages may be swapped out under memory pressure; raise RLIMIT_MEMLOCK (LimitMEMLOCK=infinity) "
-         "or grant CAP_IPC_LOCK";
 }
 
 Result<CpuLatencyRequest> CpuLatencyRequest::hold(std::int32_t latency_us) {

@@ -24,9 +24,6 @@ struct EnvironmentReport {
 EnvironmentReport inspect_environment();
 std::string describe(const EnvironmentReport& report);
 
-/// mlockall(MCL_CURRENT | MCL_FUTURE). Returns "" on success, else why it failed.
-std::string lock_memory();
-
 /// A PM QoS request on /dev/cpu_dma_latency, held while this object lives: CPUs stay out of
 /// idle states whose exit takes longer than the requested time, so a loop's timer wake-up is
 /// not delayed by waking the CPU. (cyclictest holds the same request while it measures.)

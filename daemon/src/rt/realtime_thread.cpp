@@ -10,10 +10,6 @@
 namespace robotd::rt {
 namespace {
 
-// Touch this much stack up front so the loop never page-faults on it (with mlockall the
-// pages then stay resident).
-constexpr std::size_t kStackPrefaultBytes = std::size_t{256} * 1024;
-
 void prefault_stack() {
   std::array<volatile unsigned char, kStackPrefaultBytes> stack{};
   for (std::size_t i = 0; i < stack.size(); i += 4096) stack[i] = 1;
@@ -26,7 +22,6 @@ struct Setup {
 
 Setup configure_current_thread(const ThreadSettings& settings) {
   Setup setup;
-  pthread_setname_np(pthread_self(), settings.name.substr(0, 15).c_str());
   std::string& report = setup.start.report;
 
   if (settings.cpu >= 0) {
@@ -65,15 +60,19 @@ Setup configure_current_thread(const ThreadSettings& settings) {
 
 }  // namespace
 
-Result<ThreadStart> start_thread(std::thread& thread, const ThreadSettings& settings, std::function<void()> body) {
+Result<ThreadStart> start_thread(driver::NamedThread& thread, const ThreadSettings& settings,
+                                 std::function<void()> body) {
   std::promise<Setup> ready;
   auto ready_future = ready.get_future();
-  thread = std::thread([&ready, settings, body = std::move(body)] {
-    const Setup setup = configure_current_thread(settings);
-    const bool run = setup.ok;
-    ready.set_value(setup);  // `ready` must not be touched after this line
-    if (run) body();
-  });
+  thread = driver::NamedThread(
+      settings.name,
+      [&ready, settings, body = std::move(body)] {
+        const Setup setup = configure_current_thread(settings);
+        const bool run = setup.ok;
+        ready.set_value(setup);  // `ready` must not be touched after this line
+        if (run) body();
+      },
+      kLoopStackBytes);
   const Setup setup = ready_future.get();
   if (!setup.ok) {
     thread.join();

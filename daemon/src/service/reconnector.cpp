@@ -22,7 +22,7 @@ Reconnector::Reconnector(std::vector<device::Device*> devices, std::vector<Devic
 Reconnector::~Reconnector() { stop(); }
 
 void Reconnector::start() {
-  thread_ = std::thread([this] { run(); });
+  thread_ = driver::NamedThread("reconnector", [this] { run(); });
 }
 
 void Reconnector::stop() {
@@ -35,7 +35,6 @@ void Reconnector::stop() {
 }
 
 void Reconnector::run() {
-  pthread_setname_np(pthread_self(), "reconnector");
   std::unique_lock lock(mutex_);
   while (!wake_.wait_for(lock, kCheckPeriod, [this] { return stopping_; })) {
     lock.unlock();

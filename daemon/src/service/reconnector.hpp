@@ -9,10 +9,10 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include "device/device.hpp"
+#include "robotd/driver/named_thread.hpp"
 #include "service/device_observer.hpp"
 
 namespace robotd::service {
@@ -44,7 +44,7 @@ class Reconnector {
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
-  std::thread thread_;
+  driver::NamedThread thread_;
 };
 
 }  // namespace robotd::service

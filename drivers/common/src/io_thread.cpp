@@ -18,8 +18,7 @@ Result<void> IoThread::start(const std::string& name, int fifo_priority, std::fu
                       "cannot create an eventfd for " + name + " (" + std::generic_category().message(errno) + ")");
   }
   stop_.store(false, std::memory_order_release);
-  thread_ = std::thread([name, fifo_priority, body = std::move(body)] {
-    pthread_setname_np(pthread_self(), name.substr(0, 15).c_str());
+  thread_ = driver::NamedThread(name, [fifo_priority, body = std::move(body)] {
     if (fifo_priority > 0) {
       sched_param param{};
       param.sched_priority = fifo_priority;

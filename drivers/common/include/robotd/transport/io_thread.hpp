@@ -5,8 +5,8 @@
 #include <atomic>
 #include <functional>
 #include <string>
-#include <thread>
 
+#include "robotd/driver/named_thread.hpp"
 #include "robotd/result.hpp"
 
 namespace robotd::transport {
@@ -19,7 +19,7 @@ class IoThread {
   ~IoThread() { stop(); }
 
   /// Creates the wake eventfd and runs `body` on a new thread named `name` (at most 15
-  /// characters), at SCHED_FIFO `fifo_priority` when above 0 (best effort: without the right to
+  /// characters) with driver::kThreadStackBytes of stack, at SCHED_FIFO `fifo_priority` when above 0 (best effort: without the right to
   /// it the thread runs with normal scheduling). `body` loops until stopping().
   Result<void> start(const std::string& name, int fifo_priority, std::function<void()> body);
   /// Sets stopping(), wakes the thread, joins it and closes the eventfd. Safe when not started.
@@ -35,7 +35,7 @@ class IoThread {
 
  private:
   int wake_fd_ = -1;
-  std::thread thread_;
+  driver::NamedThread thread_;
   std::atomic<bool> stop_{false};
 };
 
