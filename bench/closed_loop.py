@@ -16,8 +16,10 @@ Per closed-loop run: the fraction of ticks answered in time as robotd counts it 
 /session_status) and as the client sees it (its answer sent before the next offered tick's
 deadline, skipped ticks unanswered); the round trip tick deadline → robotd accepted the answer
 (robotd's loop_timing answer_round_trip samples) p50/p99/p99.9/max; the hops of that round trip
-(deadline → state ready → published → client received → client sent → robotd accepted) p50/p99;
-loop overruns during the run, next to the overruns of the same loops in the seconds before the
+(deadline → state ready → published → client received → client sent → robotd accepted) p50/p99
+(the last hop per answer only when robotd took every answer, see analyse(); else its p50 as the
+round trip's p50 minus deadline → client sent's);
+loop overruns during the run, next to the overruns of the same loop in as many seconds before the
 first client. Baselines from the same run: cyclictest (-m -p 80 -i 1000, alone) with its late
 wake-up fractions, and a DDS ping-pong of the same sizes (robotd_bench_pingpong: a TickState of 6
 or 23 joints, answered by a ControlCommand of as many torques; and the command latency's
@@ -53,7 +55,7 @@ def python_environment(programs):
     return environment, None
 
 
-def run_client(robotd, device, command, environment=None):
+def run_client(robotd, device, command, environment=None, every=1):
     """Runs one closed-loop client on `device` and joins what it saw with robotd's loop_timing."""
     before = robotd.call(device, "loop_timing", {"reset": True})
     process = subprocess.Popen(command, stdout=subprocess.PIPE, text=True, env=environment)
@@ -61,6 +63,11 @@ def run_client(robotd, device, command, environment=None):
     timing = robotd.call(device, "loop_timing", {"samples": True})
     client["round_trip_ns"] = timing["answer_round_trip_ns"]
     client["overruns"] = timing["overruns"] - before["overruns"]
+    # States robotd's publisher never wrote: it publishes the newest state when it wakes, so a
+    # wake-up later than a period skips the states in between (every state is due: 1 per tick, or
+    # 1 per `every` ticks).
+    client["states_not_published"] = ((timing["ticks"] - before["ticks"]) // every -
+                                      (timing["joint_states_published"] - before["joint_states_published"]))
     return client
 
 
@@ -96,25 +103,6 @@ def tick_step(ticks):
     return max(set(steps), key=steps.count) if steps else 1
 
 
-def pair_accepted(client, round_trip, step):
-    """client sent → robotd accepted (µs) per answer robotd took, and how many answers it never took.
-    robotd keeps one round trip (deadline → accepted) per answer it took, in tick order, without
-    the tick's number. An answer robotd never took was overtaken in its mailbox by the answer to
-    the next state, before a tick read it: it was sent late, and the next state was answered. So
-    the answers set aside are the ones sent latest (against their deadline) among those whose next
-    state was answered, as many as robotd took fewer; the rest pair in order. None when robotd took
-    more answers than the client sent (no pairing)."""
-    ticks = client["tick"]
-    sent = [(s - d) / 1000 for s, d in zip(client["sent_ns"], client["deadline_ns"])]
-    overtaken = len(ticks) - len(round_trip)
-    if overtaken < 0:
-        return None, overtaken
-    followed = [j for j in range(len(ticks) - 1) if ticks[j + 1] - ticks[j] == step]
-    set_aside = set(sorted(followed, key=lambda j: sent[j], reverse=True)[:overtaken])
-    taken = [j for j in range(len(ticks)) if j not in set_aside]
-    return [r - sent[j] for r, j in zip(round_trip, taken)], overtaken
-
-
 def analyse(client):
     """In-time fractions, the round trip and its hops (µs) of one closed-loop run."""
     ticks = client["tick"]
@@ -135,15 +123,20 @@ def analyse(client):
             "published → client received": hop("received_ns", "published_ns"),
             "client received → client sent": hop("sent_ns", "received_ns")}
     round_trip = [ns / 1000 for ns in client["round_trip_ns"]]
-    accepted, overtaken = pair_accepted(client, round_trip, step)
-    if accepted is not None:
-        hops["client sent → robotd accepted"] = accepted
+    # robotd keeps one round trip (deadline → accepted) per answer it took, in tick order but without
+    # the tick's number, and takes no answer that the next one overtook in its mailbox: the two pair
+    # one to one only when robotd took every answer. Otherwise the hop is the difference of medians.
+    sent = hop("sent_ns", "deadline_ns")
+    not_taken = len(ticks) - len(round_trip)
+    if not_taken == 0:
+        hops["client sent → robotd accepted"] = [r - s for r, s in zip(round_trip, sent)]
     hops["deadline → robotd accepted (round trip)"] = round_trip
+    accept_p50 = b.percentiles(round_trip)["p50"] - b.percentiles(sent)["p50"]
     return {"robotd_in_time": info["ticks_answered_in_time"] / info["ticks_to_answer"] if info["ticks_to_answer"]
             else 0.0,
             "client_in_time": client_in_time / offered if offered else 0.0,
-            "ticks_offered": offered, "ticks_seen": len(ticks), "step": step, "overtaken": overtaken,
-            "round_trip": b.percentiles(round_trip), "hops": {name: b.percentiles(v) for name, v in hops.items()}}
+            "ticks_offered": offered, "ticks_seen": len(ticks), "step": step, "not_taken": not_taken,
+            "accept_p50": accept_p50, "round_trip": b.percentiles(round_trip), "hops": {name: b.percentiles(v) for name, v in hops.items()}}
 
 
 def show_run(label, client, result, dds_round_trip):
@@ -151,8 +144,9 @@ def show_run(label, client, result, dds_round_trip):
     print(f"\n{label}: robotd counted {info['ticks_answered_in_time']} of {info['ticks_to_answer']} ticks in time "
           f"({100 * result['robotd_in_time']:.2f} %; late {info['ticks_answered_late']}, never "
           f"{info['ticks_unanswered']}); the client answered {result['ticks_seen']} of {result['ticks_offered']} "
-          f"offered states, {100 * result['client_in_time']:.2f} % before the next one was due; loop overruns "
-          f"during the run: {client['overruns']}")
+          f"offered states, {100 * result['client_in_time']:.2f} % before the next one was due; states robotd "
+          f"never published (its publisher woke too late): {client['states_not_published']}; loop overruns during the "
+          f"run: {client['overruns']}")
     rows = [[name, f"{s['p50']:.1f}", f"{s['p99']:.1f}", f"{s['p999']:.1f}", f"{s['max']:.1f}", s["count"]]
             for name, s in result["hops"].items()]
     if dds_round_trip is not None:
@@ -160,9 +154,10 @@ def show_run(label, client, result, dds_round_trip):
                      f"{dds_round_trip['p99']:.1f}", f"{dds_round_trip['p999']:.1f}", f"{dds_round_trip['max']:.1f}",
                      dds_round_trip["count"]])
     print(b.table(["hop (µs)", "p50", "p99", "p99.9", "max", "samples"], rows))
-    if result["overtaken"]:
-        print(f"(robotd took {len(client['round_trip_ns'])} of the client's {result['ticks_seen']} answers: "
-              f"{result['overtaken']} were overtaken in its mailbox by the next one)")
+    if result["not_taken"]:
+        print(f"robotd took {len(client['round_trip_ns'])} of the client's {result['ticks_seen']} answers (the others "
+              f"were overtaken in its mailbox by the next one): client sent → robotd accepted is not paired per "
+              f"answer; round trip p50 − (deadline → client sent) p50 = {result['accept_p50']:.1f} µs")
 
 
 def figures_of(prefix, client, result):
@@ -173,25 +168,26 @@ def figures_of(prefix, client, result):
         for q in ("p50", "p99", "p999", "max"):
             out[f"{prefix}_{key}_{q}_us"] = stats[q]
     short = {"deadline → state ready": "ready", "state ready → published": "publish",
-             "published → client received": "receive", "client received → client sent": "law",
-             "client sent → robotd accepted": "accept"}
+             "published → client received": "receive", "client received → client sent": "law"}
     for name, key in short.items():
-        if name in result["hops"]:
-            out[f"{prefix}_hop_{key}_p50_us"] = result["hops"][name]["p50"]
-            out[f"{prefix}_hop_{key}_p99_us"] = result["hops"][name]["p99"]
+        out[f"{prefix}_hop_{key}_p50_us"] = result["hops"][name]["p50"]
+        out[f"{prefix}_hop_{key}_p99_us"] = result["hops"][name]["p99"]
+    out[f"{prefix}_hop_accept_p50_us"] = round(result["accept_p50"], 1)  # difference of medians
+    out[f"{prefix}_answers_not_taken"] = result["not_taken"]
+    out[f"{prefix}_states_not_published"] = client["states_not_published"]
     return out
 
 
-def closed_loop_runs(programs, seconds, before_seconds, python_env):
+def closed_loop_runs(programs, seconds, python_env):
     """The C++ client on the arm and the humanoid, the Python client on the arm, the aligned streamer."""
     figures, runs = {}, []
     with b.private_domain() as domain, b.Robotd(programs, domain, b.config(domain, devices())) as robotd:
         start = {d: robotd.call(d, "loop_timing")["overruns"] for d in ("arm", "humanoid")}
-        time.sleep(before_seconds)  # the loops alone: their overruns without a client
+        time.sleep(seconds)  # the loops alone, as long as a client's run: their overruns without one
         before = {d: robotd.call(d, "loop_timing")["overruns"] - start[d] for d in ("arm", "humanoid")}
-        figures["closed_loop_overruns_before"] = sum(before.values())
-        figures["closed_loop_before_seconds"] = before_seconds
-        print(f"loop overruns with no client, {before_seconds} s: arm {before['arm']}, humanoid {before['humanoid']}")
+        for device, count in before.items():
+            figures[f"closed_loop_{device}_overruns_no_client"] = count
+        print(f"loop overruns with no client, {seconds} s: arm {before['arm']}, humanoid {before['humanoid']}")
 
         tool = [programs.tool("robotd_bench_closed_loop"), "--domain", str(domain), "--seconds", str(seconds)]
         for device, priority, prefix in (("arm", CLIENT_PRIORITY, "closed_loop_cpp_arm"),
@@ -221,13 +217,13 @@ def python_500hz_run(programs, seconds, python_env):
     arm = b.sim_arm("arm", joint_state_rate_hz=500)
     with b.private_domain() as domain, b.Robotd(programs, domain, b.config(domain, [arm])) as robotd:
         command = ["python3", str(PYTHON_CLIENT), "--domain", str(domain), "--device", "arm", "--seconds", str(seconds)]
-        return run_client(robotd, "arm", command, python_env)
+        return run_client(robotd, "arm", command, python_env, every=2)
 
 
 def main():
     args = b.common_arguments(__doc__).parse_args()
     programs = b.Programs(args.build_dir)
-    seconds, before_seconds, baseline_seconds = (2, 1, 2) if args.quick else (10, 5, 10)
+    seconds, baseline_seconds = (2, 2) if args.quick else (10, 10)
     load = os.getloadavg()
     python_env, python_missing = python_environment(programs)
 
@@ -235,7 +231,7 @@ def main():
     dds = {joints: b.percentiles(pingpong(programs, "closed_loop", joints, baseline_seconds / 2))
            for joints in (6, HUMANOID_JOINTS)}
     dds_oneway = b.percentiles([rt / 2 for rt in pingpong(programs, "command", 6, baseline_seconds / 2)])
-    loop_figures, runs = closed_loop_runs(programs, seconds, before_seconds, python_env)
+    loop_figures, runs = closed_loop_runs(programs, seconds, python_env)
     if python_env is not None:
         runs.append(("closed_loop_py_arm_500hz", "Python client, arm offering 500 states/s (joint_state_rate_hz 500)",
                      python_500hz_run(programs, seconds, python_env)))
