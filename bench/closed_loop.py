@@ -9,8 +9,9 @@ sim humanoid (with its IMU), each at 1 kHz; the clients take turns:
     on the arm at 1 kHz, then, in a robotd of its own, on a sim arm that offers every second
     tick's state (joint_state_rate_hz 500: its loop keeps 1 kHz, the client gets 500 states a
     second and two periods to answer each);
-  - the aligned streaming client (robotd_bench_stream --aligned: Session::send_aligned, 200 µs
-    before each tick) on the arm, 5 s: command latency, client publish → the sim driver's write().
+  - the aligned streaming client (robotd_bench_stream --aligned: Session::send_aligned) on the arm,
+    5 s with the library's default lead (200 µs before each tick), 5 s each with 150 and 100 µs:
+    command latency, client publish → the sim driver's write().
 
 Per closed-loop run: the fraction of ticks answered in time as robotd counts it (SessionInfo in
 /session_status) and as the client sees it (its answer sent before the next offered tick's
@@ -32,6 +33,7 @@ import benchlib as b
 
 PRIORITY = 80
 CLIENT_PRIORITY = 70  # a controller's: below robotd's loops (80), above everything else
+ALIGNED_LEADS_US = (200, 150, 100)  # the client library's default lead, and shorter ones
 HUMANOID_JOINTS = 23
 PYTHON_CLIENT = b.ROOT / "bench" / "tools" / "closed_loop_client.py"
 
@@ -202,14 +204,15 @@ def closed_loop_runs(programs, seconds, python_env):
             runs.append(("closed_loop_py_arm_1khz", "Python client, arm, 1 kHz",
                          run_client(robotd, "arm", command, python_env)))
 
-        streamer = b.start_tool(programs, "robotd_bench_stream", "--domain", domain, "--device", "arm", "--aligned",
-                                "--seconds", seconds / 2 + 1.5)
-        time.sleep(1.0)
-        robotd.call("arm", "command_latency", {"reset": True})
-        time.sleep(seconds / 2)
-        aligned = robotd.call("arm", "command_latency", {"samples": True})
-        b.finish_tool(streamer)
-        figures["aligned_samples_us"] = [ns / 1000 for ns in aligned["samples_ns"]]
+        for lead_us in ALIGNED_LEADS_US:
+            streamer = b.start_tool(programs, "robotd_bench_stream", "--domain", domain, "--device", "arm", "--aligned",
+                                    "--lead-us", lead_us, "--seconds", seconds / 2 + 1.5)
+            time.sleep(1.0)
+            robotd.call("arm", "command_latency", {"reset": True})
+            time.sleep(seconds / 2)
+            aligned = robotd.call("arm", "command_latency", {"samples": True})
+            b.finish_tool(streamer)
+            figures[f"aligned_samples_us_{lead_us}"] = [ns / 1000 for ns in aligned["samples_ns"]]
     return figures, runs
 
 
@@ -235,7 +238,7 @@ def main():
     if python_env is not None:
         runs.append(("closed_loop_py_arm_500hz", "Python client, arm offering 500 states/s (joint_state_rate_hz 500)",
                      python_500hz_run(programs, seconds, python_env)))
-    aligned = b.percentiles(loop_figures.pop("aligned_samples_us"))
+    aligned = {lead: b.percentiles(loop_figures.pop(f"aligned_samples_us_{lead}")) for lead in ALIGNED_LEADS_US}
     figures.update(loop_figures)
 
     print(f"closed loop: {seconds} s per client; host load average {load[0]:.1f} at the start")
@@ -250,17 +253,23 @@ def main():
         figures.update(figures_of(prefix, client, result))
     if python_env is None:
         print(f"\nPython client skipped: {python_missing}")
-    print(f"\naligned streaming (send_aligned, 200 µs lead), client publish → driver write(): p50 {aligned['p50']:.1f} "
-          f"/ p99 {aligned['p99']:.1f} / max {aligned['max']:.1f} µs ({aligned['count']} commands); DDS one-way "
-          f"p50 {dds_oneway['p50']:.1f} / p99 {dds_oneway['p99']:.1f} µs; difference of p50s "
-          f"{aligned['p50'] - dds_oneway['p50']:.1f} µs (target ≤ 100)")
+    print(f"\naligned streaming (send_aligned), client publish → driver write(), next to DDS one-way (command "
+          f"ping-pong, round trip / 2) p50 {dds_oneway['p50']:.1f} / p99 {dds_oneway['p99']:.1f} µs:")
+    for lead, stats in aligned.items():
+        print(f"  lead {lead} µs: p50 {stats['p50']:.1f} / p99 {stats['p99']:.1f} / max {stats['max']:.1f} µs "
+              f"({stats['count']} commands); p50 − DDS one-way p50 {stats['p50'] - dds_oneway['p50']:.1f} µs "
+              f"(target ≤ 100)")
     for joints, stats in dds.items():
         figures[f"closed_loop_dds_round_trip_{joints}_p50_us"] = stats["p50"]
         figures[f"closed_loop_dds_round_trip_{joints}_p99_us"] = stats["p99"]
-    figures.update({"aligned_cmd_latency_p50_us": aligned["p50"], "aligned_cmd_latency_p99_us": aligned["p99"],
-                    "aligned_cmd_latency_max_us": aligned["max"], "aligned_dds_oneway_p50_us": dds_oneway["p50"],
-                    "aligned_cmd_latency_minus_dds_p50_us": round(aligned["p50"] - dds_oneway["p50"], 1),
+    default = aligned[ALIGNED_LEADS_US[0]]
+    figures.update({"aligned_cmd_latency_p50_us": default["p50"], "aligned_cmd_latency_p99_us": default["p99"],
+                    "aligned_cmd_latency_max_us": default["max"], "aligned_dds_oneway_p50_us": dds_oneway["p50"],
+                    "aligned_dds_oneway_p99_us": dds_oneway["p99"],
+                    "aligned_cmd_latency_minus_dds_p50_us": round(default["p50"] - dds_oneway["p50"], 1),
                     "closed_loop_host_load_1min": round(load[0], 2)})
+    for lead, stats in aligned.items():
+        figures.update({f"aligned_lead{lead}_cmd_latency_{q}_us": stats[q] for q in ("p50", "p99", "p999", "max")})
     b.emit(figures)
 
 
