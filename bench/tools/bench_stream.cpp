@@ -5,6 +5,8 @@
 // With --sweep-seconds T the period is lengthened by period / (rate × T), so the client's
 // phase against robotd's tick moves once through a whole period every T seconds: a client that
 // is not phase-locked to robotd sees every phase, which is what the latency bench measures.
+// With --aligned the client keeps no clock of its own: each command goes out through
+// Session::send_aligned, --lead-us before robotd's next tick (one per tick; --rate is ignored).
 // Prints one JSON line: {"sent": N, "failed": N, "rate_hz": R, "seconds": S}.
 #include <chrono>
 #include <cmath>
@@ -22,12 +24,16 @@ int main(int argc, char** argv) {
   double rate_hz = 1000;
   double seconds = 10;
   double sweep_seconds = 0;
+  bool aligned = false;
+  int lead_us = static_cast<int>(robotd::kDefaultSendLead.count());
   app.add_option("--domain", domain)->required();
   app.add_option("--sweep-seconds", sweep_seconds, "drift through one period of phase every this many seconds")
       ->check(CLI::Range(0.1, 3600.0));
   app.add_option("--device", device);
   app.add_option("--rate", rate_hz)->check(CLI::Range(1.0, 10000.0));
   app.add_option("--seconds", seconds)->check(CLI::Range(0.1, 3600.0));
+  app.add_flag("--aligned", aligned, "send each command --lead-us before robotd's next tick (send_aligned)");
+  app.add_option("--lead-us", lead_us, "with --aligned: how long before the tick")->check(CLI::Range(0, 100000));
   CLI11_PARSE(app, argc, argv);
 
   robotd::ClientOptions options;
@@ -57,11 +63,19 @@ int main(int argc, char** argv) {
   long sent = 0;
   long failed = 0;
   std::vector<float> positions(joints);
+  robotd::Command command;
   for (auto next = start; next < end; next += period) {
-    std::this_thread::sleep_until(next);
+    if (aligned) {
+      next = std::chrono::steady_clock::now();
+    } else {
+      std::this_thread::sleep_until(next);
+    }
     const double t = std::chrono::duration<double>(next - start).count();
     for (std::size_t j = 0; j < joints; ++j) positions[j] = static_cast<float>(0.2 * std::sin(2.0 * M_PI * 0.25 * t));
-    if (session.value().send_positions(positions)) {
+    command.positions = positions;
+    const auto published = aligned ? session.value().send_aligned(command, std::chrono::microseconds(lead_us))
+                                   : session.value().command(command);
+    if (published) {
       ++sent;
     } else {
       ++failed;

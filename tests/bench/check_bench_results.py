@@ -31,6 +31,17 @@ REQUIRED = [
     *(f"estop_{vendor}_reset_zero_p99_ms" for vendor in ("piper", "hightorque")),
     *(f"footprint_{case}_{figure}" for case in ("demo7", "sim4")
       for figure in ("rss_mib", "locked_resident_mib", "locked_space_mib", "threads")),
+    *(f"closed_loop_{run}_{figure}" for run in ("cpp_arm", "cpp_humanoid", "cpp_arm_sched_other", "py_arm_1khz",
+                                                "py_arm_500hz")
+      for figure in ("in_time_fraction", "client_in_time_fraction", "overruns", "round_trip_p50_us",
+                     "round_trip_p99_us", "round_trip_p999_us", "round_trip_max_us",
+                     "hop_accept_p50_us", "answers_not_taken", "states_not_published",
+                     *(f"hop_{hop}_{q}_us" for hop in ("ready", "publish", "receive", "law") for q in ("p50", "p99")))),
+    "closed_loop_arm_overruns_no_client", "closed_loop_humanoid_overruns_no_client",
+    "closed_loop_dds_round_trip_6_p50_us", "closed_loop_dds_round_trip_23_p50_us",
+    "cyclictest_late_500us_fraction", "cyclictest_late_1ms_fraction", "cyclictest_p99_us",
+    "aligned_cmd_latency_p50_us", "aligned_dds_oneway_p50_us", "aligned_cmd_latency_minus_dds_p50_us",
+    *(f"aligned_lead{lead}_cmd_latency_{q}_us" for lead in (200, 150, 100) for q in ("p50", "p99", "p999", "max")),
 ]
 
 
