@@ -254,6 +254,8 @@ class LoopRig {
     request.control_mode = event.mode;
     request.default_behavior = event.behavior;
     request.timeout_ms = event.timeout_ms;
+    request.min_command_success_rate = static_cast<float>(event.min_rate);
+    request.on_low_success_rate = event.on_low;
     const std::size_t motor_count = request.motor_ids.empty() ? spec_.joints : request.motor_ids.size();
     if (event.default_kp >= 0) request.default_kp.assign(motor_count, static_cast<float>(event.default_kp));
     if (event.default_kd >= 0) request.default_kd.assign(motor_count, static_cast<float>(event.default_kd));
@@ -295,6 +297,9 @@ class LoopRig {
                                  ? ControlCommand{}
                                  : client_command(client, event.seed, spec_, received_ns);
     command.uuid = client.uuid;
+    // The mailbox takes whatever the command names, a tick not run yet too: the command gate
+    // refuses those in robotd (the service layer), the loop must not count them before they run.
+    command.answers_tick = answered_tick(event, state_.tick);
 
     // CommandIntake::handle: the session, then the device's state, then the validator.
     const session::SessionRecord* record = sessions_.find(command.uuid);
@@ -309,8 +314,9 @@ class LoopRig {
       ++rejected_;
       return;
     }
-    mailbox_.post(record->slot, record->generation, validated_, received_ns, command.sent_steady_ns);
-    checker_.on_command_accepted(record->generation, validated_, received_ns);
+    mailbox_.post(record->slot, record->generation, validated_, received_ns, command.sent_steady_ns,
+                  command.answers_tick);
+    checker_.on_command_accepted(record->generation, validated_, received_ns, command.answers_tick);
     ++accepted_;
   }
 

@@ -294,6 +294,8 @@ class ServiceRig {
     request.control_mode = event.mode;
     request.default_behavior = event.behavior;
     request.timeout_ms = event.timeout_ms;
+    request.min_command_success_rate = static_cast<float>(event.min_rate);
+    request.on_low_success_rate = event.on_low;
     const std::size_t motor_count = request.motor_ids.empty() ? spec_.joints : request.motor_ids.size();
     if (event.default_kp >= 0) request.default_kp.assign(motor_count, static_cast<float>(event.default_kp));
     if (event.default_kd >= 0) request.default_kd.assign(motor_count, static_cast<float>(event.default_kd));
@@ -317,6 +319,8 @@ class ServiceRig {
     record.timeout_ms = request.timeout_ms;
     record.default_kp = request.default_kp;
     record.default_kd = request.default_kd;
+    record.min_command_success_rate = request.min_command_success_rate;
+    record.on_low_success_rate = request.on_low_success_rate;
     record.granted_ns = granted_ns;
     checker_->on_start_posted(record);
     ClientSession& client = clients_[event.label];
@@ -349,6 +353,7 @@ class ServiceRig {
                                  ? ControlCommand{}
                                  : client_command(client, event.seed, spec_, received_ns);
     command.uuid = client.uuid;
+    command.answers_tick = answered_tick(event, state_.tick);
     const auto session = sessions_->authorize(command.uuid);
     const bool estopped = device_->channel().estop.load();
     const control::ValidatedCommand* accepted = gate_->handle(command, received_ns);
@@ -359,7 +364,13 @@ class ServiceRig {
     }
     ++accepted_;
     if (estopped) return Violation{"I3 e-stop first", "a command was accepted while the e-stop was engaged", tick_};
-    checker_->on_command_accepted(session->generation, *accepted, received_ns);
+    if (command.answers_tick > tick_) {
+      return Violation{
+          "I10 closed loop",
+          "the command gate accepted an answer to tick " + std::to_string(command.answers_tick) + ", which has not run",
+          tick_};
+    }
+    checker_->on_command_accepted(session->generation, *accepted, received_ns, command.answers_tick);
     return std::nullopt;
   }
 
