@@ -94,6 +94,8 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
     sum.commands_rejected += result.commands_rejected;
     sum.commands_unknown_session += result.commands_unknown_session;
     sum.sessions_granted += result.sessions_granted;
+    sum.sessions_ended_for_rate += result.sessions_ended_for_rate;
+    sum.rate_warnings += result.rate_warnings;
     for (std::size_t i = 0; i < sum.ticks_in_state.size(); ++i) sum.ticks_in_state[i] += result.ticks_in_state[i];
     if (result.violation && survey) {
       ++failures;
@@ -107,11 +109,12 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   std::printf(
       "%llu scenarios, %llu ticks in %.1f s: %llu sessions granted, %llu commands accepted, %llu rejected (%llu "
-      "without a live session)\nticks by state:",
+      "without a live session); %llu sessions ended for their success rate, %llu warned of it\nticks by state:",
       static_cast<unsigned long long>(scenarios), static_cast<unsigned long long>(sum.ticks), seconds,
       static_cast<unsigned long long>(sum.sessions_granted), static_cast<unsigned long long>(sum.commands_accepted),
       static_cast<unsigned long long>(sum.commands_rejected),
-      static_cast<unsigned long long>(sum.commands_unknown_session));
+      static_cast<unsigned long long>(sum.commands_unknown_session),
+      static_cast<unsigned long long>(sum.sessions_ended_for_rate), static_cast<unsigned long long>(sum.rate_warnings));
   for (std::size_t i = 0; i < sum.ticks_in_state.size(); ++i) {
     if (sum.ticks_in_state[i] == 0) continue;
     std::printf(" %s %.1f%%", std::string(to_string(static_cast<DeviceState>(i))).c_str(),
@@ -119,9 +122,11 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
   }
   std::printf("\n");
   EXPECT_EQ(failures, 0U);
-  // The generator must exercise what it claims to: sessions, and commands both good and bad,
-  // and every state.
+  // The generator must exercise what it claims to: sessions, commands both good and bad,
+  // closed-loop sessions falling below their minimum (ended, or warned), and every state.
   EXPECT_GT(sum.sessions_granted, scenarios);
+  EXPECT_GT(sum.sessions_ended_for_rate, scenarios / 10);
+  EXPECT_GT(sum.rate_warnings, scenarios / 10);
   EXPECT_GT(sum.commands_accepted, sum.ticks / 10);
   EXPECT_GT(sum.commands_rejected, sum.ticks / 100);
   for (const DeviceState state :

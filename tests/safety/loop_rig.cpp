@@ -107,6 +107,8 @@ class LoopRig {
     result.commands_rejected = rejected_;
     result.commands_unknown_session = rejected_unknown_;
     result.sessions_granted = granted_;
+    result.sessions_ended_for_rate = ended_for_rate_;
+    result.rate_warnings = rate_warnings_;
     result.ticks_in_state = ticks_in_state_;
     return result;
   }
@@ -218,6 +220,8 @@ class LoopRig {
       if (device::ends_session(event.type)) {
         (void)sessions_.end(0, event.slot, event.generation);
       }
+      if (event.type == device::LoopEvent::Type::kSessionRateTooLow) ++ended_for_rate_;
+      if (event.type == device::LoopEvent::Type::kSuccessRateLow) ++rate_warnings_;
     }
     maintenance_.step();
     plant_.advance(1e-9 * static_cast<double>(kPeriodNs));
@@ -366,6 +370,8 @@ class LoopRig {
   std::uint64_t rejected_ = 0;
   std::uint64_t rejected_unknown_ = 0;
   std::uint64_t granted_ = 0;
+  std::uint64_t ended_for_rate_ = 0;
+  std::uint64_t rate_warnings_ = 0;
   std::array<std::uint64_t, 7> ticks_in_state_{};
 };
 
