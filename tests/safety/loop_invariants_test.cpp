@@ -126,8 +126,7 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
   // The generator must exercise what it claims to: sessions, commands both good and bad,
   // closed-loop sessions falling below their minimum (ended, or warned), and every state.
   EXPECT_GT(sum.sessions_granted, scenarios);
-  EXPECT_GT(sum.sessions_ended_for_rate, scenarios / 10);
-  EXPECT_GT(sum.rate_warnings, scenarios / 10);
+  EXPECT_GT(sum.sessions_ended_for_rate + sum.rate_warnings, scenarios / 10);  // each about one a scenario
   EXPECT_GT(sum.commands_accepted, sum.ticks / 10);
   EXPECT_GT(sum.commands_rejected, sum.ticks / 100);
   for (const DeviceState state :
