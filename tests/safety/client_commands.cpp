@@ -88,4 +88,10 @@ ControlCommand client_command(const ClientSession& session, std::uint32_t seed, 
   return command;
 }
 
+std::uint64_t answered_tick(const Event& command, std::uint64_t newest) {
+  if (command.kind != Event::Kind::kCommand || !command.answers) return 0;
+  const auto tick = static_cast<std::int64_t>(newest) + command.answer_offset;
+  return tick > 0 ? static_cast<std::uint64_t>(tick) : 0;
+}
+
 }  // namespace robotd::safety

@@ -23,4 +23,8 @@ struct ClientSession {
 ControlCommand client_command(const ClientSession& session, std::uint32_t seed, const DeviceSpec& device,
                               std::int64_t now_ns);
 
+/// The tick a command event answers (ControlCommand.answers_tick), `newest` being the newest
+/// tick whose state the client has seen; 0 = none.
+std::uint64_t answered_tick(const Event& command, std::uint64_t newest);
+
 }  // namespace robotd::safety

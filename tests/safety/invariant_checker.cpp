@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "control/behavior_map.hpp"
 
@@ -43,6 +44,12 @@ const char* event_name(device::LoopEvent::Type type) {
       return "SessionReleased";
     case device::LoopEvent::Type::kSessionEndedByShutdown:
       return "SessionEndedByShutdown";
+    case device::LoopEvent::Type::kSessionRateTooLow:
+      return "SessionRateTooLow";
+    case device::LoopEvent::Type::kSuccessRateLow:
+      return "SuccessRateLow";
+    case device::LoopEvent::Type::kSuccessRateRecovered:
+      return "SuccessRateRecovered";
     default:
       return "other";
   }
@@ -75,6 +82,8 @@ void InvariantChecker::on_start_posted(const session::SessionRecord& record) {
   }
   session.fallback_kp = session.default_kp;
   session.fallback_kd = session.default_kd;
+  session.on_low = record.on_low_success_rate;
+  session.answers = AnswerModel(record.min_command_success_rate);
   sessions_[record.generation] = session;
   pending_events_.push_back(ControlEvent{true, record.generation, Behavior::kKeep});
 }
@@ -84,7 +93,7 @@ void InvariantChecker::on_release_posted(std::uint8_t /*slot*/, std::uint32_t ge
 }
 
 void InvariantChecker::on_command_accepted(std::uint32_t generation, const control::ValidatedCommand& command,
-                                           std::int64_t received_ns) {
+                                           std::int64_t received_ns, std::uint64_t answers_tick) {
   ++sequence_;
   for (std::size_t i = 0; i < command.count; ++i) {
     const control::JointTargetUpdate& update = command.joints[i];
@@ -92,6 +101,7 @@ void InvariantChecker::on_command_accepted(std::uint32_t generation, const contr
   }
   if (auto it = sessions_.find(generation); it != sessions_.end()) {
     it->second.last_activity_ns = std::max(it->second.last_activity_ns, received_ns);
+    it->second.answer = answers_tick;
   }
 }
 
@@ -191,6 +201,28 @@ void InvariantChecker::expire_sessions(std::int64_t now_ns) {
   }
 }
 
+// After the timeouts, as the loop books answers: each closed-loop session's newest answer, and
+// its rate against its minimum. A FALLBACK session below it ends with its timeout behaviour.
+void InvariantChecker::book_answers() {
+  std::vector<std::uint32_t> too_low;
+  for (auto& [generation, session] : sessions_) {
+    if (!session.started) continue;
+    const bool answer_offered = session.answer < offered_ticks_.size() && offered_ticks_[session.answer];
+    session.answers.tick(session.answer, answer_offered, offered_);
+    if (session.answers.recovered()) expected_rate_recoveries_.push_back(generation);
+    if (!session.answers.fell()) continue;
+    if (session.on_low == LowRateAction::kFallback) {
+      too_low.push_back(generation);
+    } else {
+      expected_rate_lows_.push_back(generation);
+    }
+  }
+  for (const std::uint32_t generation : too_low) {
+    expected_rate_ends_.push_back(generation);
+    end_session(generation, sessions_[generation].fallback);
+  }
+}
+
 void InvariantChecker::apply_targets() {
   for (std::size_t j = 0; j < model_.joint_count(); ++j) {
     Joint& joint = joints_[j];
@@ -281,7 +313,9 @@ std::optional<Violation> InvariantChecker::check(const TickObservation& tick) {
   }
   safe_ = safe_now;
   expire_sessions(tick.now_ns);
+  book_answers();
   if (auto broken = check_events(tick)) return broken;
+  if (auto broken = check_answers(tick)) return broken;
   if (auto broken = check_state(tick)) return broken;
   if (!safe_now && !shutting_down_) apply_targets();
 
@@ -295,38 +329,80 @@ std::optional<Violation> InvariantChecker::check(const TickObservation& tick) {
     }
   }
   if (tick.state->state != DeviceState::kMaintenance) maintenance_requested_ = false;
+  // Closed-loop sessions answer the states of a RUNNING device (docs/design.md "Closed loop").
+  if (tick.state->state == DeviceState::kRunning && tick.tick % settings_.state_every_ticks == 0) {
+    offered_ = tick.tick;
+    offered_ticks_.resize(tick.tick + 1);
+    offered_ticks_[tick.tick] = true;
+  }
   return broken;
 }
 
 std::optional<Violation> InvariantChecker::check_events(const TickObservation& tick) {
-  std::vector<std::uint32_t> timeouts;
-  std::vector<std::uint32_t> ends;
-  for (const device::LoopEvent& event : *tick.events) {
-    if (event.type == device::LoopEvent::Type::kSessionTimedOut) timeouts.push_back(event.generation);
-    if (event.type == device::LoopEvent::Type::kSessionReleased) ends.push_back(event.generation);
-  }
-  std::sort(timeouts.begin(), timeouts.end());
-  std::sort(ends.begin(), ends.end());
-  std::sort(expected_timeouts_.begin(), expected_timeouts_.end());
-  std::sort(expected_ends_.begin(), expected_ends_.end());
+  using Type = device::LoopEvent::Type;
   const auto list = [](const std::vector<std::uint32_t>& ids) {
     std::string out;
     for (const auto id : ids) out += (out.empty() ? "" : ",") + std::to_string(id);
     return out.empty() ? std::string("none") : out;
   };
-  std::optional<Violation> broken;
-  if (timeouts != expected_timeouts_) {
-    broken =
-        violation(tick, "I7 sessions end on time",
-                  std::string("sessions timed out: ") + list(timeouts) + "; expected: " + list(expected_timeouts_) +
-                      " (" + event_name(device::LoopEvent::Type::kSessionTimedOut) + ")");
-  } else if (ends != expected_ends_) {
-    broken = violation(tick, "I7 sessions end on time",
-                       "sessions released: " + list(ends) + "; expected: " + list(expected_ends_));
+  // The sessions the loop named in events of `type` this tick, against the model's.
+  const auto compare = [&](Type type, std::vector<std::uint32_t>& expected, const char* invariant,
+                           const char* what) -> std::optional<Violation> {
+    std::vector<std::uint32_t> seen;
+    for (const device::LoopEvent& event : *tick.events) {
+      if (event.type == type) seen.push_back(event.generation);
+    }
+    std::sort(seen.begin(), seen.end());
+    std::sort(expected.begin(), expected.end());
+    std::optional<Violation> broken;
+    if (seen != expected) {
+      broken = violation(
+          tick, invariant,
+          std::string(what) + ": " + list(seen) + "; expected: " + list(expected) + " (" + event_name(type) + ")");
+    }
+    expected.clear();
+    return broken;
+  };
+  std::optional<Violation> broken =
+      compare(Type::kSessionTimedOut, expected_timeouts_, "I7 sessions end on time", "sessions timed out");
+  for (auto [type, expected, what] : {
+           std::tuple{Type::kSessionReleased, &expected_ends_, "sessions released"},
+           std::tuple{Type::kSessionRateTooLow, &expected_rate_ends_, "sessions ended for their success rate"},
+           std::tuple{Type::kSuccessRateLow, &expected_rate_lows_, "sessions warned of a low success rate"},
+           std::tuple{Type::kSuccessRateRecovered, &expected_rate_recoveries_, "sessions whose rate recovered"},
+       }) {
+    const char* invariant = type == Type::kSessionReleased ? "I7 sessions end on time" : "I10 closed loop";
+    auto found = compare(type, *expected, invariant, what);
+    if (!broken) broken = std::move(found);
   }
-  expected_timeouts_.clear();
-  expected_ends_.clear();
   return broken;
+}
+
+// What the loop publishes of each live session's answers is what the model booked.
+std::optional<Violation> InvariantChecker::check_answers(const TickObservation& tick) {
+  for (const auto& [generation, session] : sessions_) {
+    if (!session.started) continue;
+    const device::AnswerCounts& counts = tick.state->answers[session.slot];
+    const AnswerModel& model = session.answers;
+    const bool same_rate =
+        !model.closed_loop() || counts.success_rate == static_cast<float>(model.in_time_in_window()) /
+                                                           static_cast<float>(std::min<std::uint64_t>(
+                                                               model.decided(), kSuccessRateWindowTicks));
+    if (counts.generation != generation || counts.closed_loop != model.closed_loop() ||
+        counts.to_answer != model.decided() || counts.in_time != model.in_time() || !same_rate ||
+        counts.rate_low != model.low()) {
+      std::ostringstream out;
+      out << "session " << generation << " (slot " << int{session.slot} << ") published generation "
+          << counts.generation << (counts.closed_loop ? " closed-loop" : " open-loop") << " " << counts.in_time
+          << " of " << counts.to_answer << " in time, rate " << counts.success_rate << (counts.rate_low ? " low" : "")
+          << "; expected " << (model.closed_loop() ? "closed-loop " : "open-loop ") << model.in_time() << " of "
+          << model.decided() << " in time, " << model.in_time_in_window() << " in time in the window"
+          << (model.low() ? ", low" : "") << " (newest offered tick " << offered_ << ", its newest answer "
+          << session.answer << ")";
+      return violation(tick, "I10 closed loop", out.str());
+    }
+  }
+  return std::nullopt;
 }
 
 std::optional<Violation> InvariantChecker::check_state(const TickObservation& tick) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "answer_model.hpp"
 #include "control/command_validator.hpp"
 #include "device/control_loop.hpp"
 #include "device/device_channel.hpp"
@@ -47,8 +48,8 @@ class InvariantChecker {
   // What the service side did between ticks.
   void on_start_posted(const session::SessionRecord& record);
   void on_release_posted(std::uint8_t slot, std::uint32_t generation, Behavior applied);
-  void on_command_accepted(std::uint32_t generation, const control::ValidatedCommand& command,
-                           std::int64_t received_ns);
+  void on_command_accepted(std::uint32_t generation, const control::ValidatedCommand& command, std::int64_t received_ns,
+                           std::uint64_t answers_tick);
   void on_estop(bool engaged);
   void on_maintenance_requested();
   void on_shutdown_requested();
@@ -74,6 +75,9 @@ class InvariantChecker {
     std::array<double, driver::kMaxJoints> default_kp{};  // a command without gains uses these
     std::array<double, driver::kMaxJoints> default_kd{};
     bool started = false;  // the loop has taken its start event
+    LowRateAction on_low = LowRateAction::kWarn;
+    std::uint64_t answer = 0;  // what its newest accepted command answers, as the mailbox holds it
+    AnswerModel answers;
   };
   struct Target {
     bool present = false;
@@ -121,6 +125,8 @@ class InvariantChecker {
   std::optional<Violation> take_shutdown_ends(const TickObservation& tick);
   void end_session(std::uint32_t generation, Behavior behavior);
   void expire_sessions(std::int64_t now_ns);
+  void book_answers();
+  std::optional<Violation> check_answers(const TickObservation& tick);
   void apply_targets();
   void leave_safe_state();
   Violation violation(const TickObservation& tick, const char* invariant, const std::string& detail) const;
@@ -139,6 +145,11 @@ class InvariantChecker {
   std::vector<ControlEvent> pending_events_;  // posted to the loop, in order
   std::vector<std::uint32_t> expected_timeouts_;
   std::vector<std::uint32_t> expected_ends_;
+  std::vector<std::uint32_t> expected_rate_ends_;  // FALLBACK sessions whose rate fell below their minimum
+  std::vector<std::uint32_t> expected_rate_lows_;  // WARN sessions, likewise
+  std::vector<std::uint32_t> expected_rate_recoveries_;
+  std::uint64_t offered_ = 0;        // the newest tick whose state the loop offered for answering
+  std::vector<bool> offered_ticks_;  // by tick: its state was offered
   std::array<Target, driver::kMaxJoints> targets_{};
   std::uint64_t sequence_ = 0;
   std::array<Joint, driver::kMaxJoints> joints_{};

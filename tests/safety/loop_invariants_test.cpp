@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 #include <spdlog/spdlog.h>
 
+#include "client_commands.hpp"
 #include "loop_rig.hpp"
 #include "scenario_generator.hpp"
 #include "service_rig.hpp"
@@ -94,6 +95,8 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
     sum.commands_rejected += result.commands_rejected;
     sum.commands_unknown_session += result.commands_unknown_session;
     sum.sessions_granted += result.sessions_granted;
+    sum.sessions_ended_for_rate += result.sessions_ended_for_rate;
+    sum.rate_warnings += result.rate_warnings;
     for (std::size_t i = 0; i < sum.ticks_in_state.size(); ++i) sum.ticks_in_state[i] += result.ticks_in_state[i];
     if (result.violation && survey) {
       ++failures;
@@ -107,11 +110,12 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   std::printf(
       "%llu scenarios, %llu ticks in %.1f s: %llu sessions granted, %llu commands accepted, %llu rejected (%llu "
-      "without a live session)\nticks by state:",
+      "without a live session); %llu sessions ended for their success rate, %llu warned of it\nticks by state:",
       static_cast<unsigned long long>(scenarios), static_cast<unsigned long long>(sum.ticks), seconds,
       static_cast<unsigned long long>(sum.sessions_granted), static_cast<unsigned long long>(sum.commands_accepted),
       static_cast<unsigned long long>(sum.commands_rejected),
-      static_cast<unsigned long long>(sum.commands_unknown_session));
+      static_cast<unsigned long long>(sum.commands_unknown_session),
+      static_cast<unsigned long long>(sum.sessions_ended_for_rate), static_cast<unsigned long long>(sum.rate_warnings));
   for (std::size_t i = 0; i < sum.ticks_in_state.size(); ++i) {
     if (sum.ticks_in_state[i] == 0) continue;
     std::printf(" %s %.1f%%", std::string(to_string(static_cast<DeviceState>(i))).c_str(),
@@ -119,9 +123,10 @@ void run_random_scenarios(const Layer& layer, std::uint64_t total_ticks) {
   }
   std::printf("\n");
   EXPECT_EQ(failures, 0U);
-  // The generator must exercise what it claims to: sessions, and commands both good and bad,
-  // and every state.
+  // The generator must exercise what it claims to: sessions, commands both good and bad,
+  // closed-loop sessions falling below their minimum (ended, or warned), and every state.
   EXPECT_GT(sum.sessions_granted, scenarios);
+  EXPECT_GT(sum.sessions_ended_for_rate + sum.rate_warnings, scenarios / 10);  // each about one a scenario
   EXPECT_GT(sum.commands_accepted, sum.ticks / 10);
   EXPECT_GT(sum.commands_rejected, sum.ticks / 100);
   for (const DeviceState state :
@@ -191,6 +196,44 @@ TEST(ScenarioText, RoundTrips) {
   const auto parsed = parse_scenario(to_text(scenario), error);
   ASSERT_TRUE(parsed) << error;
   EXPECT_EQ(to_text(*parsed), to_text(scenario));
+}
+
+TEST(ScenarioText, ClosedLoopFieldsRoundTripAndOldLinesKeepTheirDefaults) {
+  const std::string device = "device joints=2 safe=damping shutdown=keep policy=clamp\n";
+  std::string error;
+  const auto old =
+      parse_scenario(device + "start s=1 motors=0 mode=position fallback=keep\ncommand s=1 seed=7\n", error);
+  ASSERT_TRUE(old) << error;
+  EXPECT_EQ(old->events[0].min_rate, 0);
+  EXPECT_EQ(old->events[0].on_low, LowRateAction::kWarn);
+  EXPECT_FALSE(old->events[1].answers);
+  EXPECT_EQ(to_text(old->events[0]), "start s=1 motors=0 mode=position fallback=keep timeout_ms=100");
+  EXPECT_EQ(to_text(old->events[1]), "command s=1 seed=7");
+
+  const std::string lines =
+      "start s=1 motors=0 mode=position fallback=keep timeout_ms=100 min_rate=0.95 on_low=fallback\n"
+      "command s=1 seed=7 answers=newest\ncommand s=1 seed=8 answers=newest-3\ncommand s=1 seed=9 answers=newest+2\n";
+  const auto closed = parse_scenario(device + lines, error);
+  ASSERT_TRUE(closed) << error;
+  EXPECT_EQ(closed->events[0].min_rate, 0.95);
+  EXPECT_EQ(closed->events[0].on_low, LowRateAction::kFallback);
+  EXPECT_EQ(closed->events[2].answer_offset, -3);
+  EXPECT_EQ(answered_tick(closed->events[3], 10), 12U);
+  EXPECT_EQ(answered_tick(closed->events[2], 2), 0U);  // before the first tick: none
+  std::string printed;
+  for (const Event& event : closed->events) printed += to_text(event) + "\n";
+  EXPECT_EQ(printed, lines);
+}
+
+TEST(ScenarioText, BadClosedLoopFieldsSayWhatWasExpected) {
+  const std::string device = "device joints=2 safe=damping shutdown=keep policy=clamp\n";
+  std::string error;
+  EXPECT_FALSE(parse_scenario(device + "start s=1 motors=0 mode=position fallback=keep on_low=panic\n", error));
+  EXPECT_NE(error.find("line 2: on_low='panic' is not warn or fallback"), std::string::npos) << error;
+  EXPECT_FALSE(parse_scenario(device + "command s=1 seed=7 answers=latest\n", error));
+  EXPECT_NE(error.find("line 2: answers=latest is not newest, newest-N or newest+N"), std::string::npos) << error;
+  EXPECT_FALSE(parse_scenario(device + "command s=1 seed=7 answers=newest+-1\n", error));
+  EXPECT_NE(error.find("answers=newest+-1 is not"), std::string::npos) << error;
 }
 
 TEST(ScenarioText, ABadLineSaysWhichAndWhatWasExpected) {

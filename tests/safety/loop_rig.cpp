@@ -107,6 +107,8 @@ class LoopRig {
     result.commands_rejected = rejected_;
     result.commands_unknown_session = rejected_unknown_;
     result.sessions_granted = granted_;
+    result.sessions_ended_for_rate = ended_for_rate_;
+    result.rate_warnings = rate_warnings_;
     result.ticks_in_state = ticks_in_state_;
     return result;
   }
@@ -218,6 +220,8 @@ class LoopRig {
       if (device::ends_session(event.type)) {
         (void)sessions_.end(0, event.slot, event.generation);
       }
+      if (event.type == device::LoopEvent::Type::kSessionRateTooLow) ++ended_for_rate_;
+      if (event.type == device::LoopEvent::Type::kSuccessRateLow) ++rate_warnings_;
     }
     maintenance_.step();
     plant_.advance(1e-9 * static_cast<double>(kPeriodNs));
@@ -254,6 +258,8 @@ class LoopRig {
     request.control_mode = event.mode;
     request.default_behavior = event.behavior;
     request.timeout_ms = event.timeout_ms;
+    request.min_command_success_rate = static_cast<float>(event.min_rate);
+    request.on_low_success_rate = event.on_low;
     const std::size_t motor_count = request.motor_ids.empty() ? spec_.joints : request.motor_ids.size();
     if (event.default_kp >= 0) request.default_kp.assign(motor_count, static_cast<float>(event.default_kp));
     if (event.default_kd >= 0) request.default_kd.assign(motor_count, static_cast<float>(event.default_kd));
@@ -295,6 +301,9 @@ class LoopRig {
                                  ? ControlCommand{}
                                  : client_command(client, event.seed, spec_, received_ns);
     command.uuid = client.uuid;
+    // The mailbox takes whatever the command names, a tick not run yet too: the command gate
+    // refuses those in robotd (the service layer), the loop must not count them before they run.
+    command.answers_tick = answered_tick(event, state_.tick);
 
     // CommandIntake::handle: the session, then the device's state, then the validator.
     const session::SessionRecord* record = sessions_.find(command.uuid);
@@ -309,8 +318,9 @@ class LoopRig {
       ++rejected_;
       return;
     }
-    mailbox_.post(record->slot, record->generation, validated_, received_ns, command.sent_steady_ns);
-    checker_.on_command_accepted(record->generation, validated_, received_ns);
+    mailbox_.post(record->slot, record->generation, validated_, received_ns, command.sent_steady_ns,
+                  command.answers_tick);
+    checker_.on_command_accepted(record->generation, validated_, received_ns, command.answers_tick);
     ++accepted_;
   }
 
@@ -360,6 +370,8 @@ class LoopRig {
   std::uint64_t rejected_ = 0;
   std::uint64_t rejected_unknown_ = 0;
   std::uint64_t granted_ = 0;
+  std::uint64_t ended_for_rate_ = 0;
+  std::uint64_t rate_warnings_ = 0;
   std::array<std::uint64_t, 7> ticks_in_state_{};
 };
 

@@ -30,6 +30,8 @@ struct RunResult {
   std::uint64_t commands_rejected = 0;
   std::uint64_t commands_unknown_session = 0;  // of the rejected: no live session has the uuid
   std::uint64_t sessions_granted = 0;
+  std::uint64_t sessions_ended_for_rate = 0;      // closed-loop sessions whose rate fell below a FALLBACK minimum
+  std::uint64_t rate_warnings = 0;                // ... below a WARN minimum
   std::array<std::uint64_t, 7> ticks_in_state{};  // by DeviceState: how much of the run each state took
 };
 

@@ -1,5 +1,6 @@
 #include "scenario.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -35,10 +36,30 @@ std::string motors_text(std::uint64_t motors) {
 }
 
 std::string number(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
+  std::array<char, 32> text{};
+  const auto end = std::to_chars(text.data(), text.data() + text.size(), value).ptr;  // shortest exact
+  return {text.data(), end};
+}
+
+// "newest", "newest-3", "newest+2": the tick a command answers, relative to the newest seen.
+std::string answer_text(int offset) {
+  return "newest" + (offset == 0 ? std::string() : (offset > 0 ? "+" : "") + std::to_string(offset));
+}
+
+int answer_offset_of(const std::string& text) {
+  const std::string_view newest = "newest";
+  const auto bad = [&text] {
+    return std::invalid_argument("answers=" + text + " is not newest, newest-N or newest+N");
+  };
+  if (text.rfind(newest, 0) != 0) throw bad();
+  if (text.size() == newest.size()) return 0;
+  const char sign = text[newest.size()];
+  if (sign != '+' && sign != '-') throw bad();
+  const char* digits = text.data() + newest.size() + 1;
+  int offset = 0;
+  const auto [end, error] = std::from_chars(digits, text.data() + text.size(), offset);
+  if (error != std::errc() || end != text.data() + text.size() || offset < 0) throw bad();
+  return sign == '-' ? -offset : offset;
 }
 
 // One line's words after the first: "key=value" pairs and bare flags ("on", "off").
@@ -95,6 +116,12 @@ Behavior behavior_of(const std::string& text) {
   const auto behavior = parse_behavior(text);
   if (!behavior) throw std::invalid_argument("'" + text + "' is not keep, damping or zero_torque");
   return *behavior;
+}
+
+LowRateAction low_rate_action_of(const std::string& text) {
+  const auto action = parse_low_rate_action(text);
+  if (!action) throw std::invalid_argument("on_low='" + text + "' is not warn or fallback");
+  return *action;
 }
 
 ControlMode mode_of(const std::string& text) {
@@ -154,12 +181,16 @@ Event parse_event(const std::string& keyword, const Words& words) {
     event.timeout_ms = words.integer<int>("timeout_ms", 100);
     event.default_kp = words.real("default_kp", -1);
     event.default_kd = words.real("default_kd", -1);
+    event.min_rate = words.real("min_rate", 0);
+    if (words.has("on_low")) event.on_low = low_rate_action_of(words.text("on_low"));
   } else if (keyword == "release") {
     event.kind = Event::Kind::kRelease;
     event.behavior = behavior_of(words.text("mode"));
   } else if (keyword == "command") {
     event.kind = Event::Kind::kCommand;
     event.seed = words.integer<std::uint32_t>("seed", 0);
+    event.answers = words.has("answers");
+    if (event.answers) event.answer_offset = answer_offset_of(words.text("answers"));
   } else if (keyword == "keepalive") {
     event.kind = Event::Kind::kKeepalive;
   } else if (keyword == "estop") {
@@ -251,11 +282,14 @@ std::string to_text(const Event& e) {
       return "start" + session + " motors=" + motors_text(e.motors) + " mode=" + lower(to_string(e.mode)) +
              " fallback=" + lower(to_string(e.behavior)) + " timeout_ms=" + std::to_string(e.timeout_ms) +
              (e.default_kp >= 0 ? " default_kp=" + number(e.default_kp) : "") +
-             (e.default_kd >= 0 ? " default_kd=" + number(e.default_kd) : "");
+             (e.default_kd >= 0 ? " default_kd=" + number(e.default_kd) : "") +
+             (e.min_rate != 0 ? " min_rate=" + number(e.min_rate) : "") +
+             (e.on_low != LowRateAction::kWarn ? " on_low=" + lower(to_string(e.on_low)) : "");
     case Event::Kind::kRelease:
       return "release" + session + " mode=" + lower(to_string(e.behavior));
     case Event::Kind::kCommand:
-      return "command" + session + " seed=" + std::to_string(e.seed);
+      return "command" + session + " seed=" + std::to_string(e.seed) +
+             (e.answers ? " answers=" + answer_text(e.answer_offset) : "");
     case Event::Kind::kKeepalive:
       return "keepalive" + session;
     case Event::Kind::kEstop:

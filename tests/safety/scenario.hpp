@@ -49,7 +49,8 @@ struct Event {
     kTick,        // count ticks, each woken latency_us after its deadline
     kStart,       // request_control as session `label`
     kRelease,     // release_control of session `label` with `behavior`
-    kCommand,     // a control command of session `label`, its content drawn from `seed`
+    kCommand,     // a control command of session `label`, its content drawn from `seed`; with
+                  // `answers`, it names the tick newest + `answer_offset` (newest: the rig's latest state)
     kKeepalive,   // an empty command of session `label`
     kEstop,       // e-stop service: engage (on) or reset
     kEstopInput,  // the device's own e-stop button: pressed (on) or released
@@ -73,7 +74,11 @@ struct Event {
   int timeout_ms = 100;
   double default_kp = -1;  // kStart: < 0 = not given
   double default_kd = -1;
+  double min_rate = 0;  // kStart: min_command_success_rate (0 = none)
+  LowRateAction on_low = LowRateAction::kWarn;
   std::uint32_t seed = 0;
+  bool answers = false;   // kCommand: answers a tick (a closed-loop client); else answers_tick 0
+  int answer_offset = 0;  // kCommand: the tick it answers, relative to the newest the rig has seen
   bool on = true;
   bool fail = false;
   int code = 0;

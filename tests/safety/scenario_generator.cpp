@@ -67,7 +67,33 @@ struct Client {
   bool streaming = true;
   std::uint64_t motors = 0;  // 0 = every motor
   Event request;             // its request_control, repeated when it comes back
+  bool closed_loop = false;  // answers the newest state it has seen (a controller closing its loop)
+  double send_chance = 0.9;  // a command on a tick: how often it keeps up
 };
+
+// A closed-loop client keeps up on nearly every tick, most ticks, or falls behind often; with
+// the commands the device refuses, its success rate lands on either side of typical minimums.
+void make_closed_loop(Client& client, Dice& dice) {
+  client.closed_loop = true;
+  client.send_chance = dice.pick({0.999, 0.97, 0.9, 0.7});
+  if (dice.chance(0.7)) {
+    client.request.min_rate = dice.between(40, 190) / 200.0;  // 0.2..0.95 in half percents
+    client.request.on_low = dice.chance(0.5) ? LowRateAction::kFallback : LowRateAction::kWarn;
+  }
+}
+
+// What a closed-loop client's command answers: mostly the newest state, now and then an older
+// one, none, or (refused by the command gate) a tick that has not run yet.
+void pick_answer(Event& command, Dice& dice) {
+  const double draw = dice.real(0, 1);
+  if (draw < 0.05) return;  // answers_tick 0
+  command.answers = true;
+  if (draw < 0.10) {
+    command.answer_offset = -dice.between(1, 5);
+  } else if (draw < 0.13) {
+    command.answer_offset = dice.between(1, 3);
+  }
+}
 
 }  // namespace
 
@@ -101,7 +127,8 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
     if (clients.size() < 3 && dice.chance(0.004)) {
       std::uint64_t taken = 0;
       for (const Client& client : clients) taken |= client.motors == 0 ? ~std::uint64_t{0} : client.motors;
-      Client client{next_label++, true, 0, Event{}};
+      Client client;
+      client.label = next_label++;
       for (std::size_t j = 0; j < spec.joints; ++j) {
         if ((taken >> j & 1U) == 0 && dice.chance(0.6)) client.motors |= std::uint64_t{1} << j;
       }
@@ -115,6 +142,12 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
       start.timeout_ms = dice.chance(0.1) ? dice.between(500, 3000) : dice.between(10, 200);
       if (dice.chance(0.3)) start.default_kp = dice.real(0, spec.kp_max);
       if (dice.chance(0.3)) start.default_kd = dice.real(0, spec.kd_max);
+      if (dice.chance(0.5)) {
+        make_closed_loop(client, dice);
+      } else if (dice.chance(0.1)) {  // a minimum asked for, but never closing the loop: never judged
+        start.min_rate = 0.9;
+        start.on_low = LowRateAction::kFallback;
+      }
       push(start);
       clients.push_back(client);
     }
@@ -126,13 +159,14 @@ Scenario generate_scenario(std::uint64_t seed, std::size_t ticks) {
       // A streaming client asks again now and then: its session may have ended (a timeout
       // during a fault or an e-stop). While the session lives, the device refuses the overlap.
       if (client.streaming && dice.chance(0.05)) push(client.request);
-      if (client.streaming && dice.chance(0.9)) {
+      if (client.streaming && dice.chance(client.send_chance)) {
         const int burst = dice.chance(0.02) ? dice.between(2, 5) : 1;
         for (int i = 0; i < burst; ++i) {
           Event command;
           command.kind = Event::Kind::kCommand;
           command.label = client.label;
           command.seed = dice.word();
+          if (client.closed_loop) pick_answer(command, dice);
           push(command);
         }
       } else if (dice.chance(0.01)) {

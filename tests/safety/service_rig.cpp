@@ -147,6 +147,8 @@ class ServiceRig {
     result.commands_rejected = rejected_;
     result.commands_unknown_session = rejected_unknown_;
     result.sessions_granted = granted_;
+    result.sessions_ended_for_rate = ended_for_rate_;
+    result.rate_warnings = rate_warnings_;
     result.ticks_in_state = ticks_in_state_;
     return result;
   }
@@ -247,6 +249,8 @@ class ServiceRig {
       if (device::ends_session(event.type)) {
         (void)sessions_->session_ended(0, event.slot, event.generation);
       }
+      if (event.type == device::LoopEvent::Type::kSessionRateTooLow) ++ended_for_rate_;
+      if (event.type == device::LoopEvent::Type::kSuccessRateLow) ++rate_warnings_;
     }
     plant_->advance(1e-9 * static_cast<double>(kPeriodNs));
     if (!broken) broken = settle_maintenance();
@@ -294,6 +298,8 @@ class ServiceRig {
     request.control_mode = event.mode;
     request.default_behavior = event.behavior;
     request.timeout_ms = event.timeout_ms;
+    request.min_command_success_rate = static_cast<float>(event.min_rate);
+    request.on_low_success_rate = event.on_low;
     const std::size_t motor_count = request.motor_ids.empty() ? spec_.joints : request.motor_ids.size();
     if (event.default_kp >= 0) request.default_kp.assign(motor_count, static_cast<float>(event.default_kp));
     if (event.default_kd >= 0) request.default_kd.assign(motor_count, static_cast<float>(event.default_kd));
@@ -317,6 +323,8 @@ class ServiceRig {
     record.timeout_ms = request.timeout_ms;
     record.default_kp = request.default_kp;
     record.default_kd = request.default_kd;
+    record.min_command_success_rate = request.min_command_success_rate;
+    record.on_low_success_rate = request.on_low_success_rate;
     record.granted_ns = granted_ns;
     checker_->on_start_posted(record);
     ClientSession& client = clients_[event.label];
@@ -349,6 +357,7 @@ class ServiceRig {
                                  ? ControlCommand{}
                                  : client_command(client, event.seed, spec_, received_ns);
     command.uuid = client.uuid;
+    command.answers_tick = answered_tick(event, state_.tick);
     const auto session = sessions_->authorize(command.uuid);
     const bool estopped = device_->channel().estop.load();
     const control::ValidatedCommand* accepted = gate_->handle(command, received_ns);
@@ -359,7 +368,13 @@ class ServiceRig {
     }
     ++accepted_;
     if (estopped) return Violation{"I3 e-stop first", "a command was accepted while the e-stop was engaged", tick_};
-    checker_->on_command_accepted(session->generation, *accepted, received_ns);
+    if (command.answers_tick > tick_) {
+      return Violation{
+          "I10 closed loop",
+          "the command gate accepted an answer to tick " + std::to_string(command.answers_tick) + ", which has not run",
+          tick_};
+    }
+    checker_->on_command_accepted(session->generation, *accepted, received_ns, command.answers_tick);
     return std::nullopt;
   }
 
@@ -454,6 +469,8 @@ class ServiceRig {
   std::uint64_t rejected_ = 0;
   std::uint64_t rejected_unknown_ = 0;
   std::uint64_t granted_ = 0;
+  std::uint64_t ended_for_rate_ = 0;
+  std::uint64_t rate_warnings_ = 0;
   std::array<std::uint64_t, 7> ticks_in_state_{};
 };
 
