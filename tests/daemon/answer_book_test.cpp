@@ -15,7 +15,7 @@ class AnswerBookTest : public ::testing::Test {
   // newest offered state before this tick is `offered_`; afterwards this tick's state is offered
   // when it is due (every `every_` ticks).
   void tick(std::uint64_t now, std::uint64_t answered) {
-    book_.take_answer(answered, offered_);
+    book_.take_answer(answered, offered_, true);
     book_.close_overdue(offered_, now, every_);
     book_.end_tick();
     if (now % every_ == 0) offered_ = now;
@@ -75,10 +75,24 @@ TEST_F(AnswerBookTest, RepeatsAndTicksNeverOfferedCountForNothing) {
   tick(2, 1);
   tick(3, 2);
   tick(4, 3);
-  EXPECT_FALSE(book_.take_answer(3, offered_));  // the same answer, still in the mailbox
-  EXPECT_FALSE(book_.take_answer(9, offered_));  // a tick the loop has not offered
+  EXPECT_FALSE(book_.take_answer(3, offered_, true));  // the same answer, still in the mailbox
+  EXPECT_FALSE(book_.take_answer(9, offered_, true));  // a tick the loop has not run yet
   EXPECT_EQ(book_.counts().to_answer, 3U);
   EXPECT_EQ(book_.counts().in_time, 3U);
+}
+
+TEST_F(AnswerBookTest, AnAnswerToATickWhoseStateWasNotOfferedDecidesNothing) {
+  // Ticks 1 and 2 ran e-stopped (their states published, not offered); tick 3 was offered.
+  offered_ = 3;
+  EXPECT_TRUE(book_.take_answer(1, offered_, false));
+  book_.close_overdue(offered_, 4, 1);  // tick 3 is decided: not answered
+  EXPECT_EQ(book_.counts().to_answer, 1U);
+  EXPECT_EQ(book_.counts().unanswered, 1U);
+  EXPECT_EQ(book_.counts().late, 0U);
+  offered_ = 4;
+  EXPECT_TRUE(book_.take_answer(4, offered_, true));
+  EXPECT_EQ(book_.counts().to_answer, 2U);
+  EXPECT_EQ(book_.counts().in_time, 1U);
 }
 
 TEST_F(AnswerBookTest, AStateEveryOtherTickGivesItsAnswerUntilTheNextState) {
@@ -108,7 +122,7 @@ TEST_F(AnswerBookTest, TheRateCoversTheLastWindowAndTheMinimumIsJudgedOnAFullWin
   }
   bool fell = false;
   for (; t <= kSuccessRateWindowTicks + 5; ++t) {
-    book_.take_answer(t % 10 == 0 ? 0 : t - 1, offered_);
+    book_.take_answer(t % 10 == 0 ? 0 : t - 1, offered_, true);
     book_.close_overdue(offered_, t, 1);
     fell = fell || book_.fell_below_minimum();
     book_.end_tick();
@@ -120,7 +134,7 @@ TEST_F(AnswerBookTest, TheRateCoversTheLastWindowAndTheMinimumIsJudgedOnAFullWin
   // Every tick answered from here: the missed ones leave the window and the rate recovers.
   bool recovered = false;
   for (const std::uint64_t end = t + kSuccessRateWindowTicks; t < end; ++t) {
-    book_.take_answer(t - 1, offered_);
+    book_.take_answer(t - 1, offered_, true);
     book_.close_overdue(offered_, t, 1);
     recovered = recovered || book_.recovered();
     ASSERT_FALSE(book_.fell_below_minimum());

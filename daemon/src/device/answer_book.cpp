@@ -1,5 +1,7 @@
 #include "device/answer_book.hpp"
 
+#include <algorithm>
+
 namespace robotd::device {
 
 void AnswerBook::start(std::uint32_t generation, float min_success_rate) noexcept {
@@ -8,7 +10,7 @@ void AnswerBook::start(std::uint32_t generation, float min_success_rate) noexcep
   min_success_rate_ = min_success_rate;
 }
 
-bool AnswerBook::take_answer(std::uint64_t answered, std::uint64_t offered) noexcept {
+bool AnswerBook::take_answer(std::uint64_t answered, std::uint64_t offered, bool answered_was_offered) noexcept {
   // Repeats of an answer already taken (the mailbox keeps the newest command until the next)
   // and answers to ticks the loop never offered count for nothing.
   if (answered == 0 || answered <= newest_answer_ || answered > offered) return false;
@@ -17,6 +19,10 @@ bool AnswerBook::take_answer(std::uint64_t answered, std::uint64_t offered) noex
     decided_through_ = answered - 1;  // the session's record starts with the first tick it answered
   }
   newest_answer_ = answered;
+  if (!answered_was_offered) {  // nothing to decide: that tick was never the session's to answer
+    decided_through_ = std::max(decided_through_, answered);
+    return true;
+  }
   if (answered > decided_through_) {
     // Undecided: in time if it answers the newest state; an older one (only the first answer can
     // be) was late.

@@ -31,8 +31,10 @@ class AnswerBook {
   void start(std::uint32_t generation, float min_success_rate) noexcept;
 
   /// The session's newest command answers tick `answered` (0 = none). `offered` is the newest tick
-  /// whose state the loop offered before this tick. Returns true if this was a new answer.
-  bool take_answer(std::uint64_t answered, std::uint64_t offered) noexcept;
+  /// whose state the loop offered before this tick; `answered_was_offered` whether the loop offered
+  /// the answered tick's state (a state of an e-stopped or faulted device is published, not offered).
+  /// Returns true if this was a new answer.
+  bool take_answer(std::uint64_t answered, std::uint64_t offered, bool answered_was_offered) noexcept;
   /// Decides the offered tick as unanswered if its answer is due by now: `now` is this tick and a
   /// state is offered every `every` ticks.
   void close_overdue(std::uint64_t offered, std::uint64_t now, std::uint64_t every) noexcept;

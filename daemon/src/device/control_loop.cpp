@@ -71,7 +71,7 @@ void ControlLoop::tick(std::int64_t deadline_ns, std::int64_t now_ns) noexcept {
   ++tick_count_;
   newest_sent_ns_ = 0;
   answer_round_trip_ns_ = -1;
-  recent_deadlines_[tick_count_ % recent_deadlines_.size()] = deadline_ns;
+  recent_ticks_[tick_count_ % recent_ticks_.size()] = RecentTick{deadline_ns, false};
   take_limits();
   handle_maintenance(now_ns);
   if (!in_maintenance_) read_feedback(now_ns);
@@ -193,11 +193,11 @@ void ControlLoop::book_answers(std::int64_t now_ns) noexcept {
     AnswerBook& book = answers_[s];
     if (commands_ != nullptr && commands_->slots[s].generation == slot.generation) {
       const SlotActivity& activity = commands_->slots[s];
-      if (book.take_answer(activity.answers_tick, offered_tick_) &&
-          tick_count_ - activity.answers_tick < recent_deadlines_.size()) {
-        const std::int64_t round_trip =
-            activity.last_command_ns - recent_deadlines_[activity.answers_tick % recent_deadlines_.size()];
-        answer_round_trip_ns_ = std::max(answer_round_trip_ns_, round_trip);
+      // An answer older than the ticks kept here is long decided: it counts for nothing.
+      const bool recent = tick_count_ - activity.answers_tick < recent_ticks_.size();
+      const RecentTick& answered = recent_ticks_[activity.answers_tick % recent_ticks_.size()];
+      if (book.take_answer(activity.answers_tick, offered_tick_, recent && answered.offered) && recent) {
+        answer_round_trip_ns_ = std::max(answer_round_trip_ns_, activity.last_command_ns - answered.deadline_ns);
       }
     }
     book.close_overdue(offered_tick_, tick_count_, settings_.state_every_ticks);
@@ -581,7 +581,10 @@ void ControlLoop::publish(std::int64_t deadline_ns, std::int64_t now_ns) noexcep
   channel_.device_state.store(state, std::memory_order_release);
   const bool due = tick_count_ % settings_.state_every_ticks == 0;
   // Closed-loop sessions answer the states of a running device (commands are refused otherwise).
-  if (due && state == DeviceState::kRunning) offered_tick_ = tick_count_;
+  if (due && state == DeviceState::kRunning) {
+    offered_tick_ = tick_count_;
+    recent_ticks_[tick_count_ % recent_ticks_.size()].offered = true;
+  }
   LoopState& out = channel_.state.write_buffer();
   out.tick = tick_count_;
   out.time_ns = now_ns;

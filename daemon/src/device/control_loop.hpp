@@ -112,9 +112,13 @@ class ControlLoop {
   std::array<SlotRuntime, kMaxSessionsPerDevice> slots_{};
   std::array<control::MotionLimits, kMaxJoints> motion_limits_{};
   std::array<AnswerBook, kMaxSessionsPerDevice> answers_{};
-  // The deadlines of the last ticks, by tick number modulo their count: what an answer's
-  // round trip is measured from.
-  std::array<std::int64_t, 64> recent_deadlines_{};
+  // The last ticks, by tick number modulo their count: when each was due (an answer's round trip
+  // is measured from it) and whether its state was offered for answering.
+  struct RecentTick {
+    std::int64_t deadline_ns = 0;
+    bool offered = false;
+  };
+  std::array<RecentTick, 64> recent_ticks_{};
   std::uint64_t offered_tick_ = 0;          // the newest tick whose state was offered for answering
   std::int64_t answer_round_trip_ns_ = -1;  // this tick's, for TickTiming
 
