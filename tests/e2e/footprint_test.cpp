@@ -145,9 +145,6 @@ TEST_F(FootprintTest, EveryThreadHasTheStackRobotdGivesItAndOnlyTheLoopsArePrefa
   for (const ThreadStack& stack : *stacks) {
     std::printf("[ measured ] thread %-15s stack %5zu KiB, resident %4zu KiB\n", stack.name.c_str(),
                 stack.size_bytes / kKiB, stack.resident_bytes / kKiB);
-    // The state publishers' threads move to driver::NamedThread with the tick-synchronous
-    // publisher (issue 20); until then they keep std::thread's default stack.
-    if (stack.name.starts_with("pub-")) continue;
     if (stack.name.starts_with("rt-")) {
       saw_loop = true;
       expect_stack_of(stack, rt::kLoopStackBytes);

@@ -145,7 +145,7 @@ class Session:
 
     def send_aligned(self, positions=None, velocities=None, kp=None, kd=None, torques=None, *, motors=None,
                      lead=None):
-        """Sends a command `lead` seconds (None: the library's default, 200 µs) before the device's
+        """Sends a command `lead` seconds (None: the library's default, 120 µs) before the device's
         next tick is due, sleeping until then: open-loop streaming whose commands wait in robotd
         for about `lead` instead of up to a period."""
         if lead is not None and lead < 0:

@@ -56,6 +56,12 @@ Result<void> Daemon::start() {
         "machine can keep it from draining its sockets, and commands are then lost (docs/reliability.md)");
     config_.dds.receive_thread_priority = 0;
   }
+  if (config_.daemon.loop_io_priority > 0 && !environment.can_use_fifo) {
+    spdlog::warn(
+        "state publishers and command intake: SCHED_FIFO not permitted, so they run SCHED_OTHER: busy processes "
+        "on this machine delay each tick's state and the commands that answer it (docs/performance.md)");
+    config_.daemon.loop_io_priority = 0;
+  }
   if (config_.daemon.cpu_dma_latency_us >= 0) {
     auto request = rt::CpuLatencyRequest::hold(config_.daemon.cpu_dma_latency_us);
     if (request) {
@@ -178,7 +184,7 @@ Result<void> Daemon::start_dds() {
   for (auto& publisher : publishers_) publisher->start();
   reconnector_->start();
   session_status_->start(*sessions_, surface_counters_);
-  if (auto started = intake_->start(); !started) return started;
+  if (auto started = intake_->start(config_.daemon.loop_io_priority); !started) return started;
   services_->start();
   if (auto joystick = start_joystick(); !joystick) return joystick;
   spdlog::info(

@@ -39,6 +39,7 @@ void read_daemon(JsonReader& reader, DaemonConfig& daemon) {
   daemon.cpu_dma_latency_us =
       static_cast<std::int32_t>(reader.integer_or("cpu_dma_latency_us", daemon.cpu_dma_latency_us, -1, 1'000'000));
   daemon.yesense_imu_topics = reader.boolean_or("yesense_imu_topics", daemon.yesense_imu_topics);
+  daemon.loop_io_priority = static_cast<int>(reader.integer_or("loop_io_priority", daemon.loop_io_priority, 0, 98));
   if (daemon.min_session_timeout_ms > daemon.max_session_timeout_ms) {
     reader.error("min_session_timeout_ms", "must not exceed max_session_timeout_ms");
   }
@@ -176,6 +177,11 @@ Result<Config> parse_config(std::string_view text, std::string_view origin) {
       reader.error("rt_priority", "must be above dds.receive_thread_priority (" +
                                       std::to_string(config.dds.receive_thread_priority) +
                                       "): the loop must preempt DDS's receive thread");
+    }
+    if (device.realtime != rt::RealtimePolicy::kOff && device.rt_priority <= config.daemon.loop_io_priority) {
+      reader.error("rt_priority", "must be above daemon.loop_io_priority (" +
+                                      std::to_string(config.daemon.loop_io_priority) +
+                                      "): the loop must preempt the threads that publish its state");
     }
     config.devices.push_back(std::move(device));
   }

@@ -65,6 +65,9 @@ struct DaemonConfig {
   int stats_window_ticks = 5000;
   std::int32_t cpu_dma_latency_us = 0;  // PM QoS request held while robotd runs; -1 = none
   bool yesense_imu_topics = true;       // also publish /imu as the PI Plus /yesense_imu/* topics
+  // SCHED_FIFO priority of the threads that carry each loop's state out and commands in (the state
+  // publishers and the command intake); 0 = normal scheduling.
+  int loop_io_priority = 10;
 };
 
 /// robotd's DDS receive thread runs at this SCHED_FIFO priority unless `dds.receive_thread_priority`

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "rt/monotonic_clock.hpp"
+#include "rt/realtime_thread.hpp"
 #include "wire/qos.hpp"
 #include "wire/topics.hpp"
 
@@ -24,7 +25,7 @@ CommandIntake::~CommandIntake() {
   reader_.reset();  // first: until the reader is gone, Cyclone may call admits() on this object
 }
 
-Result<void> CommandIntake::start() {
+Result<void> CommandIntake::start(int fifo_priority) {
   auto qos = wire::reliable_qos(kCommandHistoryDepth);
   const dds_topic_filter filter{.mode = DDS_TOPIC_FILTER_SAMPLE_ARG, .f = {.sample_arg = &admits}, .arg = this};
   auto reader = wire::TopicReader<ControlCommand>::create(participant_, wire::kControlCommandTopic, qos.get(), &filter);
@@ -34,7 +35,10 @@ Result<void> CommandIntake::start() {
   dds_waitset_attach(waitset_.get(), dds_create_readcondition(reader_->handle(), DDS_ANY_STATE), 0);
   stop_condition_ = dds_create_guardcondition(participant_.handle());
   dds_waitset_attach(waitset_.get(), stop_condition_, 0);
-  thread_ = driver::NamedThread("cmd-intake", [this] { run(); });
+  thread_ = driver::NamedThread("cmd-intake", [this, fifo_priority] {
+    (void)rt::run_current_thread_fifo(fifo_priority);
+    run();
+  });
   return {};
 }
 

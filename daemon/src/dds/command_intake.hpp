@@ -26,7 +26,8 @@ class CommandIntake {
   CommandIntake& operator=(const CommandIntake&) = delete;
   ~CommandIntake();
 
-  Result<void> start();
+  /// Starts taking commands on a thread of its own, SCHED_FIFO at `fifo_priority` (0 = normal).
+  Result<void> start(int fifo_priority);
   void stop();
 
   const service::CommandCounterSet& counters(std::size_t device) const { return gate_.counters(device); }

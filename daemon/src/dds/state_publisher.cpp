@@ -7,6 +7,7 @@
 #include "app/log_text.hpp"
 #include "dds/yesense_imu.hpp"
 #include "rt/monotonic_clock.hpp"
+#include "rt/realtime_thread.hpp"
 
 namespace robotd::dds {
 namespace {
@@ -65,11 +66,13 @@ StatePublisher::~StatePublisher() {
 }
 
 void StatePublisher::start() {
-  thread_ = std::thread([this] { run(); });
+  thread_ = driver::NamedThread("pub-" + device_.model().name, [this] {
+    (void)rt::run_current_thread_fifo(daemon_.loop_io_priority);
+    run();
+  });
 }
 
 void StatePublisher::run() {
-  pthread_setname_np(pthread_self(), ("pub-" + device_.model().name).substr(0, 15).c_str());
   const std::int64_t status_period_ns = rt::kNsPerSecond / daemon_.status_rate_hz;
   rt::TickSignal& ticks = device_.channel().state_ready;
   std::int64_t next_status = rt::monotonic_now_ns();
@@ -103,15 +106,22 @@ void StatePublisher::drain_loop(bool publish_states) {
     while (auto timing = channel.timings.pop()) window_.add(*timing);
   }
   while (auto event = channel.loop_events.pop()) handle(*event);
+  // With a state every tick, the newest state is the one to publish; with one every N ticks, the
+  // newest due one (the loop keeps it apart, so a late wake-up does not lose it to a newer tick).
+  const bool every_tick = device::state_every_ticks(device_.config()) == 1;
   if (const device::LoopState* state = channel.state.take()) {
     {
       const std::lock_guard lock(latest_mutex_);
       latest_ = *state;
     }
     if (publish_states) {
-      publish_state(*state);
+      if (every_tick) publish_state(*state);
       publish_end_pose(*state);
     }
+  }
+  if (const device::LoopState* due = every_tick ? nullptr : channel.due_state.take();
+      due != nullptr && publish_states) {
+    publish_state(*due);
   }
 }
 

@@ -15,6 +15,7 @@
 #include "device/black_box.hpp"
 #include "device/device.hpp"
 #include "device/loop_statistics.hpp"
+#include "robotd/driver/named_thread.hpp"
 #include "service/command_counters.hpp"
 #include "service/device_observer.hpp"
 #include "service/session_service.hpp"
@@ -91,7 +92,7 @@ class StatePublisher final : public service::DeviceObserver {
   device::LoopState latest_{};
   app::ThrottledLog rate_log_;
   std::atomic<bool> stopping_{false};
-  std::thread thread_;
+  driver::NamedThread thread_;
 };
 
 }  // namespace robotd::dds

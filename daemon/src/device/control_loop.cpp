@@ -601,6 +601,10 @@ void ControlLoop::publish(std::int64_t deadline_ns, std::int64_t now_ns) noexcep
   out.realtime = settings_.realtime;
   for (std::size_t s = 0; s < answers_.size(); ++s) out.answers[s] = answers_[s].counts();
   out.ready_ns = rt::monotonic_now_ns();
+  if (due && settings_.state_every_ticks > 1) {
+    channel_.due_state.write_buffer() = out;
+    channel_.due_state.publish();
+  }
   channel_.state.publish();
 }
 

@@ -9,6 +9,12 @@
 #include "rt/monotonic_clock.hpp"
 
 namespace robotd::device {
+
+std::uint64_t state_every_ticks(const config::DeviceConfig& config) {
+  if (config.joint_state_rate_hz <= 0) return 1;
+  const int every = (config.rate_hz + config.joint_state_rate_hz / 2) / config.joint_state_rate_hz;  // the nearest
+  return static_cast<std::uint64_t>(std::max(1, every));
+}
 namespace {
 
 Error invalid(std::string message) { return make_error(ErrorCode::kInvalidArgument, std::move(message)); }
@@ -117,10 +123,7 @@ Result<void> Device::start(LoopRunner runner) {
   settings.shutdown_behavior = control::applied_behavior(config_.shutdown_behavior, model_.behaviors);
   settings.shutdown_duration_ns = static_cast<std::int64_t>(config_.shutdown_ms) * rt::kNsPerMs;
   settings.warmup_ticks = static_cast<std::uint64_t>(config_.rate_hz) / 2;
-  if (config_.joint_state_rate_hz > 0) {  // the nearest whole number of ticks per state
-    const int every = (config_.rate_hz + config_.joint_state_rate_hz / 2) / config_.joint_state_rate_hz;
-    settings.state_every_ticks = static_cast<std::uint64_t>(std::max(1, every));
-  }
+  settings.state_every_ticks = state_every_ticks(config_);
 
   const rt::ThreadSettings thread_settings{"rt-" + config_.name, config_.realtime, config_.rt_priority, config_.cpu};
   // The loop is built on this thread (it may allocate); the RT thread only runs it.

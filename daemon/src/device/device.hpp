@@ -21,6 +21,10 @@
 
 namespace robotd::device {
 
+/// How many ticks apart the device's states are published (and offered to closed-loop sessions):
+/// its joint_state_rate_hz as the nearest whole number of ticks, 1 when that is unset.
+std::uint64_t state_every_ticks(const config::DeviceConfig& config);
+
 class Device {
  public:
   Device(config::DeviceConfig config, std::unique_ptr<plugin::LoadedDriver> plugin);

@@ -164,6 +164,9 @@ struct DeviceChannel {
   driver::SpscRing<LoopEvent, 256> loop_events;
   driver::SpscRing<TickTiming, 16384> timings;
   rt::TripleBuffer<LoopState> state;
+  // With a state every N > 1 ticks: the newest due state, so that a publisher woken late still
+  // publishes it rather than a newer tick's that is not due (with N = 1 `state` is every due state).
+  rt::TripleBuffer<LoopState> due_state;
   rt::TickSignal state_ready;  // RT → publisher: a new state is in `state`
 
   std::array<BlackBoxRecord, kBlackBoxTicks> black_box{};

@@ -81,4 +81,11 @@ Result<ThreadStart> start_thread(driver::NamedThread& thread, const ThreadSettin
   return setup.start;
 }
 
+bool run_current_thread_fifo(int priority) noexcept {
+  if (priority <= 0) return true;
+  sched_param param{};
+  param.sched_priority = priority;
+  return pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
+}
+
 }  // namespace robotd::rt

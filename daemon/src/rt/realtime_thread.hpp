@@ -40,4 +40,8 @@ struct ThreadStart {
 Result<ThreadStart> start_thread(driver::NamedThread& thread, const ThreadSettings& settings,
                                  std::function<void()> body);
 
+/// Runs the calling thread SCHED_FIFO at `priority` (1..99); 0 leaves it as it is. Best effort:
+/// false if the system refused (the caller has checked beforehand that SCHED_FIFO is permitted).
+bool run_current_thread_fifo(int priority) noexcept;
+
 }  // namespace robotd::rt

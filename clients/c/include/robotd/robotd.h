@@ -350,7 +350,7 @@ ROBOTD_API robotd_status robotd_session_run_control_loop(robotd_session* session
 /* "Send aligned" streaming: sleeps until lead_us before the device's next tick is due, then sends
  * `command`. The tick phase comes from the newest tick state if the session reads them, else from
  * /device_status. lead_us < 0 = ROBOTD_DEFAULT_SEND_LEAD_US. */
-#define ROBOTD_DEFAULT_SEND_LEAD_US 200 /* above the DDS one-way latency on loopback (30–150 µs) */
+#define ROBOTD_DEFAULT_SEND_LEAD_US 120 /* robotd::kDefaultSendLead: see docs/clients.md */
 ROBOTD_API robotd_status robotd_session_send_aligned(robotd_session* session, const robotd_command* command,
                                                      int32_t lead_us);
 

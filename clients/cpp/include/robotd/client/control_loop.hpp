@@ -49,10 +49,12 @@ struct ControlLoopReport {
   bool finished = false;  // the law returned a finished command (else: duration or stop ended the loop)
 };
 
-/// Before a device's next tick, how long "send aligned" mode publishes: the DDS one-way latency on
-/// loopback is 30–150 µs (p50–p99, bench/tools/bench_pingpong.cpp; docs/performance.md), so a
-/// command published 200 µs before the tick is in robotd's mailbox when the tick reads it, and
-/// waits no longer than that lead for it.
-inline constexpr std::chrono::microseconds kDefaultSendLead{200};
+/// Before a device's next tick, how long "send aligned" mode publishes. A command then waits in
+/// robotd about the lead minus its DDS one-way time, and reaches the device about the lead plus
+/// the loop's wake-up after it was sent. The one-way time on loopback is 30–150 µs (p50–p99,
+/// bench/tools/bench_pingpong.cpp; docs/performance.md "Closed loop"): 120 µs makes nearly every
+/// command its tick on a quiet host and keeps the median within 100 µs of the one-way time; a
+/// loaded host wants more (a command that misses its tick is applied one period later).
+inline constexpr std::chrono::microseconds kDefaultSendLead{120};
 
 }  // namespace robotd
