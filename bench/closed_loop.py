@@ -10,7 +10,7 @@ sim humanoid (with its IMU), each at 1 kHz; the clients take turns:
     tick's state (joint_state_rate_hz 500: its loop keeps 1 kHz, the client gets 500 states a
     second and two periods to answer each);
   - the aligned streaming client (robotd_bench_stream --aligned: Session::send_aligned) on the arm,
-    5 s with the library's default lead (200 µs before each tick), 5 s each with 150 and 100 µs:
+    5 s with the library's default lead (120 µs before each tick), 5 s each with 200 and 80 µs:
     command latency, client publish → the sim driver's write().
 
 Per closed-loop run: the fraction of ticks answered in time as robotd counts it (SessionInfo in
@@ -33,7 +33,7 @@ import benchlib as b
 
 PRIORITY = 80
 CLIENT_PRIORITY = 70  # a controller's: below robotd's loops (80), above everything else
-ALIGNED_LEADS_US = (200, 150, 100)  # the client library's default lead, and shorter ones
+ALIGNED_LEADS_US = (120, 200, 80)  # the client library's default lead (kDefaultSendLead), a longer and a shorter one
 HUMANOID_JOINTS = 23
 PYTHON_CLIENT = b.ROOT / "bench" / "tools" / "closed_loop_client.py"
 

@@ -41,7 +41,7 @@ REQUIRED = [
     "closed_loop_dds_round_trip_6_p50_us", "closed_loop_dds_round_trip_23_p50_us",
     "cyclictest_late_500us_fraction", "cyclictest_late_1ms_fraction", "cyclictest_p99_us",
     "aligned_cmd_latency_p50_us", "aligned_dds_oneway_p50_us", "aligned_cmd_latency_minus_dds_p50_us",
-    *(f"aligned_lead{lead}_cmd_latency_{q}_us" for lead in (200, 150, 100) for q in ("p50", "p99", "p999", "max")),
+    *(f"aligned_lead{lead}_cmd_latency_{q}_us" for lead in (120, 200, 80) for q in ("p50", "p99", "p999", "max")),
 ]
 
 
