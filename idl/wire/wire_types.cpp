@@ -48,6 +48,19 @@ void copy_joy_values(const From& in, To& out) {
   out.r = in.r;
 }
 
+// The closed-loop fields of SessionInfo that the C and the C++ struct name and type alike.
+template <class From, class To>
+void copy_answer_counts(const From& in, To& out) {
+  out.closed_loop = in.closed_loop;
+  out.ticks_to_answer = in.ticks_to_answer;
+  out.ticks_answered_in_time = in.ticks_answered_in_time;
+  out.ticks_answered_late = in.ticks_answered_late;
+  out.ticks_unanswered = in.ticks_unanswered;
+  out.command_success_rate = in.command_success_rate;
+  out.min_command_success_rate = in.min_command_success_rate;
+  out.success_rate_low = in.success_rate_low;
+}
+
 void session_info_to_c(const SessionInfo& in, robotd_msgs_msg_dds__SessionInfo_& out) {
   out.uuid = c_string(in.uuid);
   out.node_name = c_string(in.node_name);
@@ -63,15 +76,8 @@ void session_info_to_c(const SessionInfo& in, robotd_msgs_msg_dds__SessionInfo_&
   out.commands_accepted = in.commands_accepted;
   out.policy_name = c_string(in.policy_name);
   out.policy_file_name = c_string(in.policy_file_name);
-  out.closed_loop = in.closed_loop;
-  out.ticks_to_answer = in.ticks_to_answer;
-  out.ticks_answered_in_time = in.ticks_answered_in_time;
-  out.ticks_answered_late = in.ticks_answered_late;
-  out.ticks_unanswered = in.ticks_unanswered;
-  out.command_success_rate = in.command_success_rate;
-  out.min_command_success_rate = in.min_command_success_rate;
+  copy_answer_counts(in, out);
   out.on_low_success_rate = enum_to_c(in.on_low_success_rate);
-  out.success_rate_low = in.success_rate_low;
 }
 
 void surface_to_c(const SurfaceCounters& in, robotd_msgs_msg_dds__SurfaceCounters_& out, CArena& arena) {
@@ -111,15 +117,8 @@ SessionInfo session_info_from_c(const robotd_msgs_msg_dds__SessionInfo_& in) {
   out.commands_accepted = in.commands_accepted;
   out.policy_name = copy_string(in.policy_name);
   out.policy_file_name = copy_string(in.policy_file_name);
-  out.closed_loop = in.closed_loop;
-  out.ticks_to_answer = in.ticks_to_answer;
-  out.ticks_answered_in_time = in.ticks_answered_in_time;
-  out.ticks_answered_late = in.ticks_answered_late;
-  out.ticks_unanswered = in.ticks_unanswered;
-  out.command_success_rate = in.command_success_rate;
-  out.min_command_success_rate = in.min_command_success_rate;
+  copy_answer_counts(in, out);
   out.on_low_success_rate = enum_from_c<LowRateAction>(in.on_low_success_rate);
-  out.success_rate_low = in.success_rate_low;
   return out;
 }
 

@@ -48,6 +48,16 @@ class ClosedLoopTest : public RobotdTest {
     return std::nullopt;
   }
 
+  /// A session on every motor of the arm that asks for a success rate of at least 0.9.
+  Result<Session> minimum_rate_session(LowRateAction below) {
+    SessionRequest request;
+    request.device = "arm";
+    request.on_timeout = Behavior::kKeep;
+    request.min_command_success_rate = 0.9F;
+    request.on_low_success_rate = below;
+    return client().request_control(request);
+  }
+
   /// Holds every joint where it is, answering `state`.
   Result<void> answer(const Session& session, const TickState& state, const std::vector<float>& hold) {
     ControlCommand command;
@@ -152,12 +162,7 @@ TEST_F(ClosedLoopTest, JointStatesAreStampedWithTheDeadlineOfTheTickThatMeasured
 TEST_F(ClosedLoopTest, ASessionBelowItsMinimumSuccessRateFallsBackWhenItAskedTo) {
   start_robotd();
   open_tick_reader();
-  SessionRequest request;
-  request.device = "arm";
-  request.on_timeout = Behavior::kKeep;
-  request.min_command_success_rate = 0.9F;
-  request.on_low_success_rate = LowRateAction::kFallback;
-  auto granted = client().request_control(request);
+  auto granted = minimum_rate_session(LowRateAction::kFallback);
   ASSERT_TRUE(granted) << granted.error().message;
   Session& session = granted.value();
   auto first = next_tick(0);
@@ -186,11 +191,7 @@ TEST_F(ClosedLoopTest, ASessionBelowItsMinimumSuccessRateFallsBackWhenItAskedTo)
 TEST_F(ClosedLoopTest, ASessionBelowItsMinimumThatOnlyWarnsKeepsItsMotorsAndIsFlagged) {
   start_robotd();
   open_tick_reader();
-  SessionRequest request;
-  request.device = "arm";
-  request.min_command_success_rate = 0.9F;
-  request.on_low_success_rate = LowRateAction::kWarn;
-  auto granted = client().request_control(request);
+  auto granted = minimum_rate_session(LowRateAction::kWarn);
   ASSERT_TRUE(granted) << granted.error().message;
   Session& session = granted.value();
   auto first = next_tick(0);
