@@ -19,8 +19,8 @@ class IoThread {
   ~IoThread() { stop(); }
 
   /// Creates the wake eventfd and runs `body` on a new thread named `name` (at most 15
-  /// characters) with driver::kThreadStackBytes of stack, at SCHED_FIFO `fifo_priority` when above 0 (best effort: without the right to
-  /// it the thread runs with normal scheduling). `body` loops until stopping().
+  /// characters) with driver::kThreadStackBytes of stack, at SCHED_FIFO `fifo_priority` when above 0 (best effort:
+  /// without the right to it the thread runs with normal scheduling). `body` loops until stopping().
   Result<void> start(const std::string& name, int fifo_priority, std::function<void()> body);
   /// Sets stopping(), wakes the thread, joins it and closes the eventfd. Safe when not started.
   void stop() noexcept;
