@@ -90,7 +90,9 @@ TEST_F(ClosedLoopClientTest, PdLawGetsNewerTicksAndItsAnswersMoveTheArmAndAreCou
   // (A loop, not views::iota: clang 14, which builds the sanitizer stages, cannot use it with
   // libstdc++ 12.)
   std::size_t consecutive = 0;
-  for (std::size_t i = 1; i < law.ticks.size(); ++i) consecutive += law.ticks[i] == law.ticks[i - 1] + 1 ? 1 : 0;
+  for (std::size_t i = 1; i < law.ticks.size(); ++i) {
+    if (law.ticks[i] == law.ticks[i - 1] + 1) ++consecutive;
+  }
   std::printf("[ measured ] %llu ticks seen, %zu the one after the previous, %llu skipped\n",
               static_cast<unsigned long long>(report.value().ticks_seen), consecutive,
               static_cast<unsigned long long>(report.value().ticks_skipped));
