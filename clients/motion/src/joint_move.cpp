@@ -7,11 +7,12 @@
 #include <cstddef>
 #include <limits>
 #include <string>
-#include <utility>
+#include <string_view>
 
 #include "describe.hpp"
 #include "joint_path.hpp"
 #include "move_checks.hpp"
+#include "named_planners.hpp"
 
 namespace robotd::motion {
 namespace {
@@ -24,7 +25,7 @@ using detail::number;
 
 /// t given: the commander's profile over t, refused when a joint would pass its limits.
 Result<Trajectory> timed_move(const Joints& from, const Joints& to, const Joints& distance, const MoveTiming& timing,
-                              const JointLimits& limits, double dt_s) {
+                              const JointLimits& limits, double dt_s, std::string_view what) {
   const Shape shape = timing.shape.value_or(Shape::kPolynomial);
   const std::size_t count = detail::intervals(*timing.duration_s, dt_s);
   const PathProfile profile = PathProfile::over(shape, static_cast<double>(count) * dt_s);
@@ -41,7 +42,7 @@ Result<Trajectory> timed_move(const Joints& from, const Joints& to, const Joints
     }
   }
   if (needed_s > profile.duration_s() * (1 + kLimitMargin)) {
-    return Error{"joint move: t = " + number(*timing.duration_s) + " s is too short: " + joint_name(worst) +
+    return Error{std::string(what) + ": t = " + number(*timing.duration_s) + " s is too short: " + joint_name(worst) +
                  " would reach " + number(distance[worst] * profile.peak_rate()) + " rad/s and " +
                  number(distance[worst] * profile.peak_acceleration()) + " rad/s² (max " +
                  number(limits.max_speed_rad_s[worst]) + " rad/s, " + number(limits.max_acceleration_rad_s2[worst]) +
@@ -70,7 +71,7 @@ Binding binding(const Joints& distance, const Joints& maximum, double fraction) 
 /// No t: the fastest s(t) of the shape in which the leading joint keeps to v % of its maximum
 /// speed and a % of its maximum acceleration (so the others keep to less of theirs).
 Result<Trajectory> paced_move(const Joints& from, const Joints& to, const Joints& distance, const MoveTiming& timing,
-                              const JointLimits& limits, double dt_s) {
+                              const JointLimits& limits, double dt_s, std::string_view what) {
   const bool percent_given = timing.speed_percent || timing.acceleration_percent;
   const Shape shape = percent_given ? Shape::kTrapezoid : timing.shape.value_or(Shape::kTrapezoid);
   const double speed_percent = timing.speed_percent.value_or(kDefaultSpeedPercent);
@@ -97,8 +98,8 @@ Result<Trajectory> paced_move(const Joints& from, const Joints& to, const Joints
   }
   const std::size_t count = detail::intervals_covering(duration_s, dt_s);
   if (static_cast<double>(count) > detail::kMaxSamples) {
-    return Error{"joint move: at " + pace + " the move would take more than a million samples of " + number(dt_s) +
-                 " s"};
+    return Error{std::string(what) + ": at " + pace + " the move would take more than a million samples of " +
+                 number(dt_s) + " s"};
   }
   // Whole samples only lengthen the move: the trapezoid keeps its ramp and cruises slower.
   const double sampled_s = static_cast<double>(count) * dt_s;
@@ -110,18 +111,20 @@ Result<Trajectory> paced_move(const Joints& from, const Joints& to, const Joints
 
 }  // namespace
 
-Result<Trajectory> plan_joint_move(const Joints& from, const Joints& to, const MoveTiming& timing,
-                                   const JointLimits& limits, double dt_s) {
+namespace detail {
+
+Result<Trajectory> plan_joint_move_as(std::string_view what, const Joints& from, const Joints& to,
+                                      const MoveTiming& timing, const JointLimits& limits, double dt_s) {
   auto problem = detail::limits_problem(limits, limits.min_rad.size());
   if (!problem) problem = detail::joints_problem(from, limits, "the start");
   if (!problem) problem = detail::joints_problem(to, limits, "the goal");
   if (!problem) problem = detail::outside_limits(to, limits, "goal");
   if (!problem) problem = detail::timing_problem(timing, dt_s);
-  if (problem) return Error{"joint move: " + *problem};
+  if (problem) return Error{std::string(what) + ": " + *problem};
 
   Joints distance(from.size());
   for (std::size_t j = 0; j < distance.size(); ++j) distance[j] = std::abs(to[j] - from[j]);
-  if (timing.duration_s) return timed_move(from, to, distance, timing, limits, dt_s);
+  if (timing.duration_s) return timed_move(from, to, distance, timing, limits, dt_s, what);
   if (std::all_of(distance.begin(), distance.end(), [](double d) { return d == 0; })) {
     return Trajectory{.dt_s = dt_s,
                       .positions = {from},
@@ -130,7 +133,14 @@ Result<Trajectory> plan_joint_move(const Joints& from, const Joints& to, const M
                       .duration_s = 0,
                       .how = "already there"};
   }
-  return paced_move(from, to, distance, timing, limits, dt_s);
+  return paced_move(from, to, distance, timing, limits, dt_s, what);
+}
+
+}  // namespace detail
+
+Result<Trajectory> plan_joint_move(const Joints& from, const Joints& to, const MoveTiming& timing,
+                                   const JointLimits& limits, double dt_s) {
+  return detail::plan_joint_move_as("joint move", from, to, timing, limits, dt_s);
 }
 
 }  // namespace robotd::motion

@@ -57,6 +57,16 @@ std::optional<std::string> outside_limits(const Joints& q, const JointLimits& li
   return std::nullopt;
 }
 
+std::optional<std::string> model_problem(const kinematics::ArmModel& model, const Joints& from,
+                                         const JointLimits& limits) {
+  if (model.dof == 0 || model.dof > kinematics::kMaxArmJoints) {
+    return "the arm model " + std::string(model.name) + " has " + std::to_string(model.dof) +
+           " joints, expected 1 to " + std::to_string(kinematics::kMaxArmJoints);
+  }
+  if (auto problem = limits_problem(limits, model.dof)) return problem;
+  return joints_problem(from, limits, "the start");
+}
+
 std::optional<std::string> timing_problem(const MoveTiming& timing, double dt_s) {
   if (!positive(dt_s)) return "the sample period must be positive, got " + number(dt_s) + " s";
   if (timing.duration_s) {

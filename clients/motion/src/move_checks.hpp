@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "robotd/kinematics/arm_model.hpp"
 #include "robotd/motion/joint_move.hpp"
 
 namespace robotd::motion::detail {
@@ -19,6 +20,9 @@ std::optional<std::string> limits_problem(const JointLimits& limits, std::size_t
 std::optional<std::string> joints_problem(const Joints& q, const JointLimits& limits, std::string_view what);
 /// The first joint of `q` (called `what`) outside its position limits.
 std::optional<std::string> outside_limits(const Joints& q, const JointLimits& limits, std::string_view what);
+/// `model` has 1 … 7 joints, `limits` as many, and `from` is a finite position of them.
+std::optional<std::string> model_problem(const kinematics::ArmModel& model, const Joints& from,
+                                         const JointLimits& limits);
 /// dt and t positive, t at most kMaxSamples samples, v and a in (0, 100].
 std::optional<std::string> timing_problem(const MoveTiming& timing, double dt_s);
 
