@@ -23,8 +23,8 @@ namespace {
 using kinematics::ArmJoints;
 using kinematics::ArmModel;
 
-constexpr double kDt = 0.01;
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kLineDt = 0.01;
+constexpr double kDegree = std::numbers::pi / 180.0;
 
 const ArmModel& model(std::string_view name) {
   const ArmModel* found = kinematics::find_arm_model(name);
@@ -46,7 +46,7 @@ JointLimits limits_of(const ArmModel& arm) {
 
 Joints degrees(std::initializer_list<double> values) {
   Joints q;
-  for (const double value : values) q.push_back(value * kDeg);
+  for (const double value : values) q.push_back(value * kDegree);
   return q;
 }
 
@@ -81,7 +81,7 @@ void expect_on_the_line(const ArmModel& arm, const Trajectory& trajectory, const
   const Eigen::Quaterniond from(start.linear());
   const Eigen::Quaterniond to(goal.linear());
   for (std::size_t k = 0; k < trajectory.positions.size(); ++k) {
-    const double s = profile.position(static_cast<double>(k) * kDt);
+    const double s = profile.position(static_cast<double>(k) * kLineDt);
     const Eigen::Isometry3d tool = pose_at(arm, trajectory.positions[k]);
     const Eigen::Vector3d expected = start.translation() + s * (goal.translation() - start.translation());
     EXPECT_LT((tool.translation() - expected).norm(), 1e-6) << "sample " << k;
@@ -95,7 +95,8 @@ TEST(PoseMove, SolvesTheGoalThenMovesByTheJointRules) {
   const ArmModel& parol6 = model("parol6");
   const Joints from = parol6_working();
   const Eigen::Isometry3d goal = pose_at(parol6, degrees({20, -50, 190, 10, -40, 110}));
-  const Result<Trajectory> planned = plan_pose_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kDt);
+  const Result<Trajectory> planned =
+      plan_pose_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error();
   EXPECT_EQ(planned->shape, Shape::kPolynomial);  // t alone: "poly"
   EXPECT_EQ(planned->positions.size(), 201U);
@@ -110,7 +111,7 @@ TEST(PoseMove, AnUnreachablePoseIsAClearError) {
   const ArmModel& parol6 = model("parol6");
   Eigen::Isometry3d far = pose_at(parol6, parol6_working());
   far.translation() = Eigen::Vector3d(1.5, 0.0, 0.3);  // the PAROL6 reaches about 0.45 m
-  const Result<Trajectory> planned = plan_pose_move(parol6, parol6_working(), far, {}, limits_of(parol6), kDt);
+  const Result<Trajectory> planned = plan_pose_move(parol6, parol6_working(), far, {}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
   EXPECT_EQ(planned.error().rfind("pose move: no joint solution within the joint limits reaches the goal pose", 0), 0U)
       << planned.error();
@@ -120,10 +121,10 @@ TEST(LineMove, EverySampleIsOnTheLineWhereTheProfilePutsIt) {
   const ArmModel& parol6 = model("parol6");
   const Joints from = parol6_working();
   const Eigen::Isometry3d start = pose_at(parol6, from);
-  const Eigen::Isometry3d goal = moved(start, {0.03, -0.02, 0.015}, 15 * kDeg, {1, 0, 0});
+  const Eigen::Isometry3d goal = moved(start, {0.03, -0.02, 0.015}, 15 * kDegree, {1, 0, 0});
   for (const Shape shape : {Shape::kPolynomial, Shape::kTrapezoid}) {
     const Result<Trajectory> planned =
-        plan_line_move(parol6, from, goal, {.duration_s = 2.0, .shape = shape}, limits_of(parol6), kDt);
+        plan_line_move(parol6, from, goal, {.duration_s = 2.0, .shape = shape}, limits_of(parol6), kLineDt);
     ASSERT_TRUE(planned.ok()) << planned.error();
     EXPECT_EQ(planned->shape, shape);
     EXPECT_EQ(planned->positions.size(), 201U);
@@ -139,7 +140,7 @@ TEST(LineMove, WithoutTTheToolCruisesAtItsSpeedOnAThirdsTrapezoid) {
   const Joints from = parol6_working();
   const Eigen::Isometry3d start = pose_at(parol6, from);
   const Eigen::Isometry3d goal = moved(start, {0.0, 0.0, 0.06}, 0.0, {0, 0, 1});
-  const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kDt);
+  const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error();
   EXPECT_EQ(planned->shape, Shape::kTrapezoid);
   // 60 mm cruising at 50 mm/s in the middle third: 1.5 · 1.2 s.
@@ -149,7 +150,7 @@ TEST(LineMove, WithoutTTheToolCruisesAtItsSpeedOnAThirdsTrapezoid) {
   const double speed = (pose_at(parol6, planned->positions[middle + 1]).translation() -
                         pose_at(parol6, planned->positions[middle]).translation())
                            .norm() /
-                       kDt;
+                       kLineDt;
   EXPECT_NEAR(speed, kDefaultLinearSpeedMS, 1e-6);
 }
 
@@ -157,8 +158,8 @@ TEST(LineMove, PlansArmsOfSevenJoints) {
   const ArmModel& xarm7 = model("xarm7");
   const Joints from = degrees({0, 20, 10, 60, 5, 40, 0});
   const Eigen::Isometry3d start = pose_at(xarm7, from);
-  const Eigen::Isometry3d goal = moved(start, {-0.05, 0.04, -0.03}, 10 * kDeg, {0, 1, 0});
-  const Result<Trajectory> planned = plan_line_move(xarm7, from, goal, {.duration_s = 2.0}, limits_of(xarm7), kDt);
+  const Eigen::Isometry3d goal = moved(start, {-0.05, 0.04, -0.03}, 10 * kDegree, {0, 1, 0});
+  const Result<Trajectory> planned = plan_line_move(xarm7, from, goal, {.duration_s = 2.0}, limits_of(xarm7), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error();
   EXPECT_EQ(planned->positions.back().size(), 7U);
   expect_on_the_line(xarm7, planned.value(), start, goal);
@@ -172,7 +173,8 @@ TEST(LineMove, StopsBeforeASingularitySayingHowFarAlong) {
   singular[4] = 0.0;
   const Eigen::Isometry3d goal = pose_at(parol6, singular);
   EXPECT_LT(kinematics::smallest_singular_value(parol6, arm(singular)), 1e-9);
-  const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kDt);
+  const Result<Trajectory> planned =
+      plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
   EXPECT_NE(planned.error().find("line move: stops before a singularity"), std::string::npos) << planned.error();
   EXPECT_NE(planned.error().find("% along the line ("), std::string::npos) << planned.error();
@@ -180,7 +182,7 @@ TEST(LineMove, StopsBeforeASingularitySayingHowFarAlong) {
   EXPECT_NE(planned.error().find("it is clear up to"), std::string::npos) << planned.error();
   // The singular pose itself is reachable: what stops the line is the margin.
   const Result<Trajectory> unguarded =
-      plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kDt, {.min_singular_value = 0.0});
+      plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kLineDt, {.min_singular_value = 0.0});
   EXPECT_TRUE(unguarded.ok()) << unguarded.error();
 }
 
@@ -190,13 +192,13 @@ TEST(LineMove, KeepsToTheJointLimitsOnEverySample) {
   const Eigen::Isometry3d start = pose_at(parol6, from);
   const Eigen::Isometry3d goal = moved(start, {0.0, 0.05, 0.0}, 0.0, {0, 0, 1});
   // Where J1 must go along the line, and a limit that cuts the line half way.
-  const Result<Trajectory> free = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kDt);
+  const Result<Trajectory> free = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(free.ok()) << free.error();
   const double j1_goal = free->positions.back()[0];
-  ASSERT_GT(std::abs(j1_goal - from[0]), 5 * kDeg);
+  ASSERT_GT(std::abs(j1_goal - from[0]), 5 * kDegree);
   JointLimits narrow = limits_of(parol6);
   (j1_goal > from[0] ? narrow.max_rad[0] : narrow.min_rad[0]) = (from[0] + j1_goal) / 2;
-  const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, narrow, kDt);
+  const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, narrow, kLineDt);
   ASSERT_FALSE(planned.ok());
   EXPECT_NE(planned.error().find("line move: no joint solution"), std::string::npos) << planned.error();
   EXPECT_NE(planned.error().find("J1 would need"), std::string::npos) << planned.error();
@@ -207,7 +209,8 @@ TEST(LineMove, RefusesAJointFasterThanItsMaximum) {
   const ArmModel& parol6 = model("parol6");
   const Joints from = parol6_working();
   const Eigen::Isometry3d goal = moved(pose_at(parol6, from), {0.0, 0.1, 0.0}, 0.0, {0, 0, 1});
-  const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {.duration_s = 0.1}, limits_of(parol6), kDt);
+  const Result<Trajectory> planned =
+      plan_line_move(parol6, from, goal, {.duration_s = 0.1}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
   EXPECT_NE(planned.error().find("rad/s (max 1.5)"), std::string::npos) << planned.error();
   EXPECT_NE(planned.error().find("a longer t would do"), std::string::npos) << planned.error();
@@ -217,15 +220,15 @@ TEST(LineMove, RefusesBadArguments) {
   const ArmModel& parol6 = model("parol6");
   const Joints from = parol6_working();
   const Eigen::Isometry3d goal = pose_at(parol6, from);
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {.speed_percent = 50.0}, limits_of(parol6), kDt).error(),
+  EXPECT_EQ(plan_line_move(parol6, from, goal, {.speed_percent = 50.0}, limits_of(parol6), kLineDt).error(),
             "line move: a straight line takes t (or its tool speed), not v or a");
-  EXPECT_EQ(plan_line_move(parol6, Joints(5, 0.0), goal, {}, limits_of(parol6), kDt).error(),
+  EXPECT_EQ(plan_line_move(parol6, Joints(5, 0.0), goal, {}, limits_of(parol6), kLineDt).error(),
             "line move: the start has 5 values, expected one per joint (6)");
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(model("xarm7")), kDt).error(),
+  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(model("xarm7")), kLineDt).error(),
             "line move: the joint limit min_rad has 7 values, expected one per joint (6)");
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(parol6), kDt, {.linear_speed_m_s = 0.0}).error(),
+  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt, {.linear_speed_m_s = 0.0}).error(),
             "line move: the line's tool speed and turning speed must be positive, got 0 m/s and 0.436 rad/s");
-  const Result<Trajectory> there = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kDt);
+  const Result<Trajectory> there = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(there.ok()) << there.error();
   EXPECT_EQ(there->positions.size(), 1U);
 }
@@ -236,7 +239,7 @@ TEST(ToolRelativeMove, APureToolXMoveGoesAlongTheToolsXAxis) {
   const Eigen::Isometry3d start = pose_at(parol6, from);
   const Eigen::Isometry3d delta(Eigen::Translation3d(-0.03, 0.0, 0.0));
   const Result<Trajectory> planned =
-      plan_tool_relative_move(parol6, from, delta, {.duration_s = 1.5}, limits_of(parol6), kDt);
+      plan_tool_relative_move(parol6, from, delta, {.duration_s = 1.5}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error();
   const Eigen::Vector3d tool_x = start.linear().col(0);
   for (const Joints& q : planned->positions) {
@@ -253,9 +256,9 @@ TEST(ToolRelativeMove, ATurnAboutTheToolsZKeepsTheToolPoint) {
   const ArmModel& parol6 = model("parol6");
   const Joints from = parol6_working();
   const Eigen::Isometry3d start = pose_at(parol6, from);
-  const Eigen::Isometry3d delta(Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d::UnitZ()));
+  const Eigen::Isometry3d delta(Eigen::AngleAxisd(20 * kDegree, Eigen::Vector3d::UnitZ()));
   const Result<Trajectory> planned =
-      plan_tool_relative_move(parol6, from, delta, {.duration_s = 2.0}, limits_of(parol6), kDt);
+      plan_tool_relative_move(parol6, from, delta, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error();
   const Eigen::Isometry3d end = pose_at(parol6, planned->positions.back());
   EXPECT_LT((end.translation() - start.translation()).norm(), 1e-6);

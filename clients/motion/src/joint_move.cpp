@@ -17,9 +17,6 @@
 namespace robotd::motion {
 namespace {
 
-// A limit is exceeded only beyond this relative margin: a move planned exactly at a limit stays valid.
-constexpr double kLimitMargin = 1e-9;
-
 using detail::joint_name;
 using detail::number;
 
@@ -41,7 +38,7 @@ Result<Trajectory> timed_move(const Joints& from, const Joints& to, const Joints
       worst = j;
     }
   }
-  if (needed_s > profile.duration_s() * (1 + kLimitMargin)) {
+  if (needed_s > profile.duration_s() * (1 + detail::kLimitMargin)) {
     return Error{std::string(what) + ": t = " + number(*timing.duration_s) + " s is too short: " + joint_name(worst) +
                  " would reach " + number(distance[worst] * profile.peak_rate()) + " rad/s and " +
                  number(distance[worst] * profile.peak_acceleration()) + " rad/s² (max " +

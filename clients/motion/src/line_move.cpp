@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,19 +17,16 @@
 namespace robotd::motion {
 namespace {
 
+using detail::degrees;
 using detail::fixed;
 using detail::number;
 using kinematics::ArmJoints;
 using kinematics::ArmModel;
 
-// A limit is exceeded only beyond this relative margin: a move planned exactly at a limit stays valid.
-constexpr double kLimitMargin = 1e-9;
 // A line shorter and smaller than this is already there (a pose read back from the joints differs
 // from them by rounding only).
 constexpr double kNullTravelM = 1e-9;
 constexpr double kNullTurnRad = 1e-9;
-
-double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
 /// The tool's line: position linear, orientation slerped, both at the same fraction s.
 class ToolLine {

@@ -11,6 +11,8 @@
 
 namespace robotd::motion::detail {
 
+/// A limit is exceeded only beyond this relative margin: a move planned exactly at a limit stays valid.
+inline constexpr double kLimitMargin = 1e-9;
 /// More samples than this is a unit mistake, not a move (10⁴ s at 10 ms).
 inline constexpr double kMaxSamples = 1e6;
 

@@ -1,7 +1,5 @@
 // MovePose (IK, then a joint move) and MoveCartRelTRF (a line to the pose moved in the tool frame).
-#include <cmath>
-#include <numbers>
-#include <utility>
+#include <string>
 
 #include "arm_joints.hpp"
 #include "describe.hpp"
@@ -21,7 +19,7 @@ Result<Trajectory> plan_pose_move(const kinematics::ArmModel& model, const Joint
   if (!solution.converged) {
     return Error{"pose move: no joint solution within the joint limits reaches the goal pose (the closest is " +
                  detail::fixed(1e3 * solution.position_error_m) + " mm and " +
-                 detail::fixed(solution.orientation_error_rad * 180.0 / std::numbers::pi) + "° off)"};
+                 detail::fixed(detail::degrees(solution.orientation_error_rad)) + "° off)"};
   }
   Result<Trajectory> planned =
       detail::plan_joint_move_as("pose move", from, detail::to_joints(solution.q_rad, model.dof), timing, limits, dt_s);
