@@ -5,7 +5,6 @@
 // then read back by interpolating between those samples.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -13,10 +12,10 @@
 
 #include <Eigen/Geometry>
 
+#include "robotd/kinematics/arm_model.hpp"
+
 namespace robotd::kinematics {
 
-/// Up to 7 joints (rad); an arm with fewer uses the first `dof`.
-using ArmJoints = std::array<double, 7>;
 /// The joints that put the tool on `point`, searched from `seed`; nullopt when unreachable.
 using PointSolver = std::function<std::optional<ArmJoints>(const Eigen::Isometry3d& point, const ArmJoints& seed)>;
 
