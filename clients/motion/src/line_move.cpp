@@ -49,7 +49,7 @@ class ToolLine {
 
   /// "42 % along the line (63.0 of 150.0 mm, 12.6 of 30.0°)".
   std::string where(double s) const {
-    std::string text = fixed(100 * s, 0) + " % along the line (" + fixed(1e3 * s * length_m()) + " of " +
+    std::string text = fixed(100 * s) + " % along the line (" + fixed(1e3 * s * length_m()) + " of " +
                        fixed(1e3 * length_m()) + " mm";
     if (turn_rad() > kNullTurnRad)
       text += ", " + fixed(degrees(s * turn_rad())) + " of " + fixed(degrees(turn_rad())) + "°";
