@@ -107,6 +107,23 @@ TEST(PoseMove, SolvesTheGoalThenMovesByTheJointRules) {
   EXPECT_EQ(planned->how.rfind("IK, then quintic polynomial", 0), 0U) << planned->how;
 }
 
+TEST(PoseMove, VAndAMakeTheLeadingJointTrapezoid) {
+  const ArmModel& parol6 = model("parol6");
+  const Eigen::Isometry3d goal = pose_at(parol6, degrees({20, -50, 190, 10, -40, 110}));
+  const Result<Trajectory> planned =
+      plan_pose_move(parol6, parol6_working(), goal, {.speed_percent = 30.0, .acceleration_percent = 50.0},
+                     limits_of(parol6), kLineDt);
+  ASSERT_TRUE(planned.ok()) << planned.error();
+  EXPECT_EQ(planned->shape, Shape::kTrapezoid);
+  EXPECT_EQ(planned->how.rfind("IK, then trapezoid, leading joint", 0), 0U) << planned->how;
+  double fastest = 0;  // the leading joint's share of its 1.5 rad/s
+  for (const Joints& velocity : planned->velocities) {
+    for (const double v : velocity) fastest = std::max(fastest, std::abs(v) / 1.5);
+  }
+  EXPECT_LE(fastest, 0.3 + 1e-12);
+  EXPECT_GT(fastest, 0.29);
+}
+
 TEST(PoseMove, AnUnreachablePoseIsAClearError) {
   const ArmModel& parol6 = model("parol6");
   Eigen::Isometry3d far = pose_at(parol6, parol6_working());

@@ -243,6 +243,24 @@ TEST(JointMove, NoJointPassesVAndAPercentOfItsLimits) {
   }
 }
 
+TEST(JointMove, VelocitiesIntegrateToThePositions) {
+  // What RBTscript's `speed` mode follows: the velocity curve alone must arrive where the
+  // positions do (trapezoid rule between samples).
+  for (const MoveTiming& timing :
+       {MoveTiming{.duration_s = 2.0}, MoveTiming{.duration_s = 3.0, .shape = Shape::kTrapezoid},
+        MoveTiming{.speed_percent = 70.0, .acceleration_percent = 30.0}}) {
+    const Trajectory trajectory = plan(home(), goal(), timing);
+    Joints integrated = home();
+    for (std::size_t k = 1; k < trajectory.velocities.size(); ++k) {
+      for (std::size_t j = 0; j < 6; ++j) {
+        integrated[j] += 0.5 * (trajectory.velocities[k - 1][j] + trajectory.velocities[k][j]) * kDt;
+        EXPECT_NEAR(integrated[j], trajectory.positions[k][j], 1e-4)
+            << trajectory.how << " J" << j + 1 << " sample " << k;
+      }
+    }
+  }
+}
+
 TEST(JointMove, PlansArmsOfAnyJointCount) {
   for (const std::size_t dof : {1U, 5U, 7U}) {
     const JointLimits limits{.min_rad = Joints(dof, -1.0),
