@@ -76,18 +76,24 @@ Result<Trajectory> paced_move(const Joints& from, const Joints& to, const Joints
   const Binding speed = binding(distance, limits.max_speed_rad_s, speed_percent / 100);
   const Binding acceleration = binding(distance, limits.max_acceleration_rad_s2, acceleration_percent / 100);
   const std::string pace = number(speed_percent) + " % speed, " + number(acceleration_percent) + " % acceleration";
+  // Which joints lead: usually one for both, but a joint with little acceleration may bind that alone.
+  const std::string leading = speed.joint == acceleration.joint
+                                  ? joint_name(speed.joint) + " at " + pace
+                                  : joint_name(speed.joint) + " at " + number(speed_percent) + " % speed, " +
+                                        joint_name(acceleration.joint) + " at " + number(acceleration_percent) +
+                                        " % acceleration";
 
   std::string how;
   double duration_s = 0;
-  double ramp_s = 0;
+  double ramp_s = 0;  // trapezoid with a cruise at V; 0 for the polynomial and for thirds
   if (shape == Shape::kPolynomial) {
     duration_s = std::max(kQuinticPeakRate / speed.rate, std::sqrt(kQuinticPeakAcceleration / acceleration.rate));
-    how = "quintic polynomial, leading joint " + joint_name(speed.joint) + " at most " + pace;
+    how = "quintic polynomial, leading joint " + leading + " at most";
   } else if (speed.rate * speed.rate / acceleration.rate <= 1) {
     // Accelerating to the cruise rate V at A covers V²/(2A) of the path, and as much to stop.
     ramp_s = speed.rate / acceleration.rate;
     duration_s = 1 / speed.rate + ramp_s;
-    how = "trapezoid, leading joint " + joint_name(speed.joint) + " at " + pace;
+    how = "trapezoid, leading joint " + leading;
   } else {
     // Too short a path to reach V: thirds, accelerating at A (peak rate √(A/2) < V).
     duration_s = std::sqrt(kThirdsPeakAcceleration / acceleration.rate);
