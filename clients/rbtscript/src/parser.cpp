@@ -20,9 +20,9 @@ bool is_value(const Token& token) {
   return token.kind == TokenKind::kNumber || token.kind == TokenKind::kWord || token.kind == TokenKind::kString;
 }
 
-/// The text from the start of `first` to the end of `last` (both views into the same line).
-std::string_view span_of(const Token& first, const Token& last) {
-  return {first.text.data(), static_cast<std::size_t>(last.text.data() + last.text.size() - first.text.data())};
+/// The text of `line` from the start of `first` to the end of `last`.
+std::string_view span_of(std::string_view line, const Token& first, const Token& last) {
+  return line.substr(first.column - 1, last.column - first.column + last.text.size());
 }
 
 LineError error_at(const Token& token, std::string expected) {
@@ -30,14 +30,14 @@ LineError error_at(const Token& token, std::string expected) {
 }
 
 /// `value` or `name=value` at tokens[at]; advances `at` past it.
-std::variant<Argument, LineError> read_argument(std::span<const Token> tokens, std::size_t& at) {
+std::variant<Argument, LineError> read_argument(std::string_view line, std::span<const Token> tokens, std::size_t& at) {
   const Token& first = tokens[at];
   if (!is_value(first)) return error_at(first, "an argument");
   Argument argument{std::nullopt, first, first.text, first.column};
   if (first.kind == TokenKind::kWord && tokens[at + 1].kind == TokenKind::kEquals) {
     const Token& value = tokens[at + 2];
     if (!is_value(value)) return error_at(value, "a value after '" + std::string(first.text) + "='");
-    argument = Argument{first, value, span_of(first, value), first.column};
+    argument = Argument{first, value, span_of(line, first, value), first.column};
     at += 3;
   } else {
     at += 1;
@@ -45,17 +45,17 @@ std::variant<Argument, LineError> read_argument(std::span<const Token> tokens, s
   return argument;
 }
 
-/// Name(argument, ...) followed by the end of the line. `tokens` ends with kEndOfLine.
-std::variant<Call, LineError> read_call(std::span<const Token> tokens) {
+/// Name(argument, ...); `at` ends on the ')'. `tokens` ends with kEndOfLine.
+std::variant<Call, LineError> read_call(std::string_view line, std::span<const Token> tokens, std::size_t& at) {
   Call call{tokens[0], {}, {}};
   if (call.name.kind != TokenKind::kWord) return error_at(call.name, expected_statement(call.name));
   if (tokens[1].kind != TokenKind::kOpenParen) {
     return error_at(tokens[1], "'(' after " + std::string(call.name.text));
   }
-  std::size_t at = 2;
+  at = 2;
   if (tokens[at].kind != TokenKind::kCloseParen) {
     while (true) {
-      auto argument = read_argument(tokens, at);
+      auto argument = read_argument(line, tokens, at);
       if (auto* error = std::get_if<LineError>(&argument)) return std::move(*error);
       call.arguments.push_back(std::get<Argument>(argument));
       if (tokens[at].kind == TokenKind::kCloseParen) break;
@@ -64,9 +64,6 @@ std::variant<Call, LineError> read_call(std::span<const Token> tokens) {
     }
   }
   call.close = tokens[at];
-  if (tokens[at + 1].kind != TokenKind::kEndOfLine) {
-    return error_at(tokens[at + 1], "the end of the line or a // comment: one statement per line");
-  }
   return call;
 }
 
@@ -76,13 +73,18 @@ std::variant<std::monostate, Statement, LineError> parse_line(std::string_view l
   if (auto* error = std::get_if<LineError>(&lexed)) return std::move(*error);
   const auto& tokens = std::get<std::vector<Token>>(lexed);
   if (tokens.size() == 1) return std::monostate{};
-  auto read = read_call(tokens);
+  std::size_t close = 0;
+  auto read = read_call(line, tokens, close);
   if (auto* error = std::get_if<LineError>(&read)) return std::move(*error);
   const Call& call = std::get<Call>(read);
+  // The arguments first, so that a line's error is the leftmost one.
   auto bound = bind_statement(call);
   if (auto* error = std::get_if<LineError>(&bound)) return std::move(*error);
+  if (tokens[close + 1].kind != TokenKind::kEndOfLine) {
+    return error_at(tokens[close + 1], "the end of the line or a // comment: one statement per line");
+  }
   return Statement{std::get<StatementKind>(std::move(bound)), SourceLocation{1, call.name.column},
-                   std::string(span_of(call.name, call.close))};
+                   std::string(span_of(line, call.name, call.close))};
 }
 
 }  // namespace
