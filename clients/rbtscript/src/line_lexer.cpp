@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <system_error>
+#include <utility>
 
 namespace robotd::rbtscript::detail {
 namespace {
@@ -102,6 +103,10 @@ std::variant<Token, LineError> lex_one(std::string_view line, std::size_t start)
 std::string describe(const Token& token) {
   if (token.kind == TokenKind::kEndOfLine) return "end of line";
   return "'" + std::string(token.text) + "'";
+}
+
+LineError error_at(const Token& token, std::string expected) {
+  return {token.column, describe(token), std::move(expected)};
 }
 
 std::string_view string_content(const Token& token) { return token.text.substr(1, token.text.size() - 2); }

@@ -29,6 +29,9 @@ struct LineError {
 /// How an error names a token: "'MoveJ'", "')'", "end of line".
 std::string describe(const Token& token);
 
+/// An error at `token`, which is what was found there.
+LineError error_at(const Token& token, std::string expected);
+
 /// A string token's text without its quotes.
 std::string_view string_content(const Token& token);
 

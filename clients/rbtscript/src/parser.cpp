@@ -25,10 +25,6 @@ std::string_view span_of(std::string_view line, const Token& first, const Token&
   return line.substr(first.column - 1, last.column - first.column + last.text.size());
 }
 
-LineError error_at(const Token& token, std::string expected) {
-  return {token.column, describe(token), std::move(expected)};
-}
-
 /// `value` or `name=value` at tokens[at]; advances `at` past it.
 std::variant<Argument, LineError> read_argument(std::string_view line, std::span<const Token> tokens, std::size_t& at) {
   const Token& first = tokens[at];

@@ -18,9 +18,6 @@ using Bound = std::variant<StatementKind, LineError>;
 LineError error_at(const Argument& argument, std::string expected) {
   return {argument.column, describe(argument), std::move(expected)};
 }
-LineError error_at(const Token& token, std::string expected) {
-  return {token.column, describe(token), std::move(expected)};
-}
 /// An error about the argument at `index`, or about the ')' when there are fewer arguments.
 LineError error_at_position(const Call& call, std::size_t index, std::string expected) {
   if (index < call.arguments.size()) return error_at(call.arguments[index], std::move(expected));
@@ -242,10 +239,10 @@ Bound bind_no_arguments(const Call& call) {
 }
 
 Bound bind_output(const Call& call) {
-  constexpr std::string_view kNumberExpected = "the output number, a whole number of at least 1";
-  if (call.arguments.empty()) return error_at(call.close, std::string(kNumberExpected));
+  constexpr std::string_view kOutputNumberExpected = "the output number, a whole number of at least 1";
+  if (call.arguments.empty()) return error_at(call.close, std::string(kOutputNumberExpected));
   const auto number = whole_number(call.arguments[0]);
-  if (!number || *number < 1) return error_at(call.arguments[0], std::string(kNumberExpected));
+  if (!number || *number < 1) return error_at(call.arguments[0], std::string(kOutputNumberExpected));
   if (call.arguments.size() < 2) return error_at(call.close, "',' and then HIGH or LOW");
   const Argument& level = call.arguments[1];
   if (!is_word(level, "HIGH") && !is_word(level, "LOW")) return error_at(level, "HIGH or LOW");
