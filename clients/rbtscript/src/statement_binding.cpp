@@ -102,12 +102,6 @@ std::optional<Option> option_of(const Argument& argument) {
   return std::nullopt;
 }
 
-struct MoveOptions {
-  std::optional<double> speed_percent, acceleration_percent, duration_s;
-  std::optional<Profile> profile;
-  Tracking tracking = Tracking::kPosition;
-};
-
 std::optional<LineError> bind_percent(const Argument& argument, std::string_view meaning, std::optional<double>& out) {
   const Token& value = argument.value;
   if (value.kind != TokenKind::kNumber || !(value.number > 0 && value.number <= 100)) {
@@ -117,7 +111,7 @@ std::optional<LineError> bind_percent(const Argument& argument, std::string_view
   return std::nullopt;
 }
 
-std::optional<LineError> bind_option(const Argument& argument, Option option, MoveOptions& options) {
+std::optional<LineError> bind_option(const Argument& argument, Option option, JointMotion& options) {
   switch (option) {
     case Option::kSpeed:
       return bind_percent(argument, "v: percent of the leading joint's maximum speed", options.speed_percent);
@@ -143,9 +137,9 @@ std::optional<LineError> bind_option(const Argument& argument, Option option, Mo
 }
 
 /// The optional arguments from `first` on: each of `allowed` at most once, in that order.
-std::variant<MoveOptions, LineError> bind_options(const Call& call, std::size_t first, std::span<const Option> allowed,
+std::variant<JointMotion, LineError> bind_options(const Call& call, std::size_t first, std::span<const Option> allowed,
                                                   std::string_view values_note) {
-  MoveOptions options;
+  JointMotion options;
   std::optional<Option> previous;
   for (std::size_t i = first; i < call.arguments.size(); ++i) {
     const Argument& argument = call.arguments[i];
@@ -168,10 +162,8 @@ std::variant<MoveOptions, LineError> bind_options(const Call& call, std::size_t 
   return options;
 }
 
-JointMotion joint_motion(const MoveOptions& options) {
-  return {options.speed_percent, options.acceleration_percent, options.duration_s, options.profile, options.tracking};
-}
-CartesianMotion cartesian_motion(const MoveOptions& options) {
+/// The Cartesian moves' share of the options (bind_options has refused v and a for them).
+CartesianMotion cartesian_motion(const JointMotion& options) {
   return {options.duration_s, options.profile, options.tracking};
 }
 
@@ -188,7 +180,7 @@ Bound bind_pose_move(const Call& call, std::span<const Option> allowed, std::str
   if (auto* error = std::get_if<LineError>(&values)) return std::move(*error);
   auto options = bind_options(call, 6, allowed, values_note);
   if (auto* error = std::get_if<LineError>(&options)) return std::move(*error);
-  return build(pose_of(std::get<std::vector<double>>(values)), std::get<MoveOptions>(options));
+  return build(pose_of(std::get<std::vector<double>>(values)), std::get<JointMotion>(options));
 }
 
 Bound bind_move_joint(const Call& call) {
@@ -197,26 +189,26 @@ Bound bind_move_joint(const Call& call) {
   auto joints = std::get<std::vector<double>>(std::move(values));
   auto options = bind_options(call, joints.size(), kJointMoveOptions, "MoveJoint takes at most 7 joint values");
   if (auto* error = std::get_if<LineError>(&options)) return std::move(*error);
-  return MoveJoint{std::move(joints), joint_motion(std::get<MoveOptions>(options))};
+  return MoveJoint{std::move(joints), std::get<JointMotion>(options)};
 }
 
 Bound bind_move_pose(const Call& call) {
   return bind_pose_move(call, kJointMoveOptions, "MovePose takes exactly 6 pose values",
-                        [](const Pose& pose, const MoveOptions& options) -> StatementKind {
-                          return MovePose{pose, joint_motion(options)};
+                        [](const Pose& pose, const JointMotion& options) -> StatementKind {
+                          return MovePose{pose, options};
                         });
 }
 
 Bound bind_move_cart(const Call& call) {
   return bind_pose_move(call, kCartesianMoveOptions, "MoveCart takes exactly 6 pose values, and no v or a",
-                        [](const Pose& pose, const MoveOptions& options) -> StatementKind {
+                        [](const Pose& pose, const JointMotion& options) -> StatementKind {
                           return MoveCart{pose, cartesian_motion(options)};
                         });
 }
 
 Bound bind_move_cart_rel_trf(const Call& call) {
   return bind_pose_move(call, kCartesianMoveOptions, "MoveCartRelTRF takes exactly 6 pose values, and no v or a",
-                        [](const Pose& pose, const MoveOptions& options) -> StatementKind {
+                        [](const Pose& pose, const JointMotion& options) -> StatementKind {
                           return MoveCartRelTrf{pose, cartesian_motion(options)};
                         });
 }
