@@ -97,7 +97,7 @@ TEST(PoseMove, SolvesTheGoalThenMovesByTheJointRules) {
   const Eigen::Isometry3d goal = pose_at(parol6, degrees({20, -50, 190, 10, -40, 110}));
   const Result<Trajectory> planned =
       plan_pose_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(planned.ok()) << planned.error();
+  ASSERT_TRUE(planned.ok()) << planned.error().message;
   EXPECT_EQ(planned->shape, Shape::kPolynomial);  // t alone: "poly"
   EXPECT_EQ(planned->positions.size(), 201U);
   EXPECT_EQ(planned->positions.front(), from);
@@ -113,7 +113,7 @@ TEST(PoseMove, VAndAMakeTheLeadingJointTrapezoid) {
   const Result<Trajectory> planned =
       plan_pose_move(parol6, parol6_working(), goal, {.speed_percent = 30.0, .acceleration_percent = 50.0},
                      limits_of(parol6), kLineDt);
-  ASSERT_TRUE(planned.ok()) << planned.error();
+  ASSERT_TRUE(planned.ok()) << planned.error().message;
   EXPECT_EQ(planned->shape, Shape::kTrapezoid);
   EXPECT_EQ(planned->how.rfind("IK, then trapezoid, leading joint", 0), 0U) << planned->how;
   double fastest = 0;  // the leading joint's share of its 1.5 rad/s
@@ -130,8 +130,8 @@ TEST(PoseMove, AnUnreachablePoseIsAClearError) {
   far.translation() = Eigen::Vector3d(1.5, 0.0, 0.3);  // the PAROL6 reaches about 0.45 m
   const Result<Trajectory> planned = plan_pose_move(parol6, parol6_working(), far, {}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
-  EXPECT_EQ(planned.error().rfind("pose move: no joint solution within the joint limits reaches the goal pose", 0), 0U)
-      << planned.error();
+  EXPECT_EQ(planned.error().message.rfind("pose move: no joint solution within the joint limits reaches the goal pose", 0), 0U)
+      << planned.error().message;
 }
 
 TEST(LineMove, EverySampleIsOnTheLineWhereTheProfilePutsIt) {
@@ -142,7 +142,7 @@ TEST(LineMove, EverySampleIsOnTheLineWhereTheProfilePutsIt) {
   for (const Shape shape : {Shape::kPolynomial, Shape::kTrapezoid}) {
     const Result<Trajectory> planned =
         plan_line_move(parol6, from, goal, {.duration_s = 2.0, .shape = shape}, limits_of(parol6), kLineDt);
-    ASSERT_TRUE(planned.ok()) << planned.error();
+    ASSERT_TRUE(planned.ok()) << planned.error().message;
     EXPECT_EQ(planned->shape, shape);
     EXPECT_EQ(planned->positions.size(), 201U);
     EXPECT_EQ(planned->positions.front(), from);
@@ -158,7 +158,7 @@ TEST(LineMove, WithoutTTheToolCruisesAtItsSpeedOnAThirdsTrapezoid) {
   const Eigen::Isometry3d start = pose_at(parol6, from);
   const Eigen::Isometry3d goal = moved(start, {0.0, 0.0, 0.06}, 0.0, {0, 0, 1});
   const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(planned.ok()) << planned.error();
+  ASSERT_TRUE(planned.ok()) << planned.error().message;
   EXPECT_EQ(planned->shape, Shape::kTrapezoid);
   // 60 mm cruising at 50 mm/s in the middle third: 1.5 · 1.2 s.
   EXPECT_NEAR(planned->duration_s, 1.8, 1e-9);
@@ -177,7 +177,7 @@ TEST(LineMove, PlansArmsOfSevenJoints) {
   const Eigen::Isometry3d start = pose_at(xarm7, from);
   const Eigen::Isometry3d goal = moved(start, {-0.05, 0.04, -0.03}, 10 * kDegree, {0, 1, 0});
   const Result<Trajectory> planned = plan_line_move(xarm7, from, goal, {.duration_s = 2.0}, limits_of(xarm7), kLineDt);
-  ASSERT_TRUE(planned.ok()) << planned.error();
+  ASSERT_TRUE(planned.ok()) << planned.error().message;
   EXPECT_EQ(planned->positions.back().size(), 7U);
   expect_on_the_line(xarm7, planned.value(), start, goal);
 }
@@ -193,14 +193,14 @@ TEST(LineMove, StopsBeforeASingularitySayingHowFarAlong) {
   const Result<Trajectory> planned =
       plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
-  EXPECT_NE(planned.error().find("line move: stops before a singularity"), std::string::npos) << planned.error();
-  EXPECT_NE(planned.error().find("% along the line ("), std::string::npos) << planned.error();
-  EXPECT_NE(planned.error().find(" mm"), std::string::npos) << planned.error();
-  EXPECT_NE(planned.error().find("it is clear up to"), std::string::npos) << planned.error();
+  EXPECT_NE(planned.error().message.find("line move: stops before a singularity"), std::string::npos) << planned.error().message;
+  EXPECT_NE(planned.error().message.find("% along the line ("), std::string::npos) << planned.error().message;
+  EXPECT_NE(planned.error().message.find(" mm"), std::string::npos) << planned.error().message;
+  EXPECT_NE(planned.error().message.find("it is clear up to"), std::string::npos) << planned.error().message;
   // The singular pose itself is reachable: what stops the line is the margin.
   const Result<Trajectory> unguarded =
       plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kLineDt, {.min_singular_value = 0.0});
-  EXPECT_TRUE(unguarded.ok()) << unguarded.error();
+  EXPECT_TRUE(unguarded.ok()) << unguarded.error().message;
 }
 
 TEST(LineMove, KeepsToTheJointLimitsOnEverySample) {
@@ -210,16 +210,16 @@ TEST(LineMove, KeepsToTheJointLimitsOnEverySample) {
   const Eigen::Isometry3d goal = moved(start, {0.0, 0.05, 0.0}, 0.0, {0, 0, 1});
   // Where J1 must go along the line, and a limit that cuts the line half way.
   const Result<Trajectory> free = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(free.ok()) << free.error();
+  ASSERT_TRUE(free.ok()) << free.error().message;
   const double j1_goal = free->positions.back()[0];
   ASSERT_GT(std::abs(j1_goal - from[0]), 5 * kDegree);
   JointLimits narrow = limits_of(parol6);
   (j1_goal > from[0] ? narrow.max_rad[0] : narrow.min_rad[0]) = (from[0] + j1_goal) / 2;
   const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, narrow, kLineDt);
   ASSERT_FALSE(planned.ok());
-  EXPECT_NE(planned.error().find("line move: no joint solution"), std::string::npos) << planned.error();
-  EXPECT_NE(planned.error().find("J1 would need"), std::string::npos) << planned.error();
-  EXPECT_NE(planned.error().find("outside its limits"), std::string::npos) << planned.error();
+  EXPECT_NE(planned.error().message.find("line move: no joint solution"), std::string::npos) << planned.error().message;
+  EXPECT_NE(planned.error().message.find("J1 would need"), std::string::npos) << planned.error().message;
+  EXPECT_NE(planned.error().message.find("outside its limits"), std::string::npos) << planned.error().message;
 }
 
 TEST(LineMove, RefusesAJointFasterThanItsMaximum) {
@@ -229,24 +229,24 @@ TEST(LineMove, RefusesAJointFasterThanItsMaximum) {
   const Result<Trajectory> planned =
       plan_line_move(parol6, from, goal, {.duration_s = 0.1}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
-  EXPECT_NE(planned.error().find("rad/s (max 1.5)"), std::string::npos) << planned.error();
-  EXPECT_NE(planned.error().find("a longer t would do"), std::string::npos) << planned.error();
+  EXPECT_NE(planned.error().message.find("rad/s (max 1.5)"), std::string::npos) << planned.error().message;
+  EXPECT_NE(planned.error().message.find("a longer t would do"), std::string::npos) << planned.error().message;
 }
 
 TEST(LineMove, RefusesBadArguments) {
   const ArmModel& parol6 = model("parol6");
   const Joints from = parol6_working();
   const Eigen::Isometry3d goal = pose_at(parol6, from);
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {.speed_percent = 50.0}, limits_of(parol6), kLineDt).error(),
+  EXPECT_EQ(plan_line_move(parol6, from, goal, {.speed_percent = 50.0}, limits_of(parol6), kLineDt).error().message,
             "line move: a straight line takes t (or its tool speed), not v or a");
-  EXPECT_EQ(plan_line_move(parol6, Joints(5, 0.0), goal, {}, limits_of(parol6), kLineDt).error(),
+  EXPECT_EQ(plan_line_move(parol6, Joints(5, 0.0), goal, {}, limits_of(parol6), kLineDt).error().message,
             "line move: the start has 5 values, expected one per joint (6)");
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(model("xarm7")), kLineDt).error(),
+  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(model("xarm7")), kLineDt).error().message,
             "line move: the joint limit min_rad has 7 values, expected one per joint (6)");
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt, {.linear_speed_m_s = 0.0}).error(),
+  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt, {.linear_speed_m_s = 0.0}).error().message,
             "line move: the line's tool speed and turning speed must be positive, got 0 m/s and 0.436 rad/s");
   const Result<Trajectory> there = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(there.ok()) << there.error();
+  ASSERT_TRUE(there.ok()) << there.error().message;
   EXPECT_EQ(there->positions.size(), 1U);
 }
 
@@ -257,7 +257,7 @@ TEST(ToolRelativeMove, APureToolXMoveGoesAlongTheToolsXAxis) {
   const Eigen::Isometry3d delta(Eigen::Translation3d(-0.03, 0.0, 0.0));
   const Result<Trajectory> planned =
       plan_tool_relative_move(parol6, from, delta, {.duration_s = 1.5}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(planned.ok()) << planned.error();
+  ASSERT_TRUE(planned.ok()) << planned.error().message;
   const Eigen::Vector3d tool_x = start.linear().col(0);
   for (const Joints& q : planned->positions) {
     const Eigen::Isometry3d tool = pose_at(parol6, q);
@@ -276,7 +276,7 @@ TEST(ToolRelativeMove, ATurnAboutTheToolsZKeepsTheToolPoint) {
   const Eigen::Isometry3d delta(Eigen::AngleAxisd(20 * kDegree, Eigen::Vector3d::UnitZ()));
   const Result<Trajectory> planned =
       plan_tool_relative_move(parol6, from, delta, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(planned.ok()) << planned.error();
+  ASSERT_TRUE(planned.ok()) << planned.error().message;
   const Eigen::Isometry3d end = pose_at(parol6, planned->positions.back());
   EXPECT_LT((end.translation() - start.translation()).norm(), 1e-6);
   EXPECT_LT((end.linear() - start.linear() * delta.linear()).norm(), 1e-5);

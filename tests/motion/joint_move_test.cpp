@@ -37,14 +37,14 @@ const Joints& goal() {
 Trajectory plan(const Joints& from, const Joints& to, const MoveTiming& timing,
                 const JointLimits& limits = six_joint_limits()) {
   Result<Trajectory> result = plan_joint_move(from, to, timing, limits, kDt);
-  EXPECT_TRUE(result.ok()) << result.error();
+  EXPECT_TRUE(result.ok()) << result.error().message;
   return result.ok() ? std::move(result).value() : Trajectory{};
 }
 
 std::string refusal(const Joints& to, const MoveTiming& timing, const JointLimits& limits = six_joint_limits(),
                     double dt_s = kDt) {
   const Result<Trajectory> result = plan_joint_move(home(), to, timing, limits, dt_s);
-  return result.ok() ? std::string("(planned)") : result.error();
+  return result.ok() ? std::string("(planned)") : result.error().message;
 }
 
 double peak_speed(const Trajectory& trajectory, std::size_t j) {

@@ -39,7 +39,7 @@ Result<Trajectory> timed_move(const Joints& from, const Joints& to, const Joints
     }
   }
   if (needed_s > profile.duration_s() * (1 + detail::kLimitMargin)) {
-    return Error{std::string(what) + ": t = " + number(*timing.duration_s) + " s is too short: " + joint_name(worst) +
+    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": t = " + number(*timing.duration_s) + " s is too short: " + joint_name(worst) +
                  " would reach " + number(distance[worst] * profile.peak_rate()) + " rad/s and " +
                  number(distance[worst] * profile.peak_acceleration()) + " rad/s² (max " +
                  number(limits.max_speed_rad_s[worst]) + " rad/s, " + number(limits.max_acceleration_rad_s2[worst]) +
@@ -101,7 +101,7 @@ Result<Trajectory> paced_move(const Joints& from, const Joints& to, const Joints
   }
   const std::size_t count = detail::intervals_covering(duration_s, dt_s);
   if (static_cast<double>(count) > detail::kMaxSamples) {
-    return Error{std::string(what) + ": at " + pace + " the move would take more than a million samples of " +
+    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": at " + pace + " the move would take more than a million samples of " +
                  number(dt_s) + " s"};
   }
   // Whole samples only lengthen the move: the trapezoid keeps its ramp and cruises slower.
@@ -123,7 +123,7 @@ Result<Trajectory> plan_joint_move_as(std::string_view what, const Joints& from,
   if (!problem) problem = detail::joints_problem(to, limits, "the goal");
   if (!problem) problem = detail::outside_limits(to, limits, "goal");
   if (!problem) problem = detail::timing_problem(timing, dt_s);
-  if (problem) return Error{std::string(what) + ": " + *problem};
+  if (problem) return Error{ErrorCode::kInvalidArgument, std::string(what) + ": " + *problem};
 
   Joints distance(from.size());
   for (std::size_t j = 0; j < distance.size(); ++j) distance[j] = std::abs(to[j] - from[j]);

@@ -114,7 +114,7 @@ namespace detail {
 Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& model, const Joints& from,
                                      const Eigen::Isometry3d& goal, const MoveTiming& timing, const JointLimits& limits,
                                      double dt_s, const LineOptions& options) {
-  const auto fail = [what](const std::string& message) { return Error{std::string(what) + ": " + message}; };
+  const auto fail = [what](const std::string& message) { return Error{ErrorCode::kInvalidArgument, std::string(what) + ": " + message}; };
   auto problem = model_problem(model, from, limits);
   if (!problem) problem = timing_problem(timing, dt_s);
   if (!problem) problem = options_problem(options, timing);

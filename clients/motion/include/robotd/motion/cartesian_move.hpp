@@ -20,7 +20,7 @@
 
 #include "robotd/kinematics/arm_model.hpp"
 #include "robotd/motion/joint_move.hpp"
-#include "robotd/motion/result.hpp"
+#include "robotd/result.hpp"
 #include "robotd/motion/trajectory.hpp"
 
 namespace robotd::motion {

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "robotd/motion/path_profile.hpp"
-#include "robotd/motion/result.hpp"
+#include "robotd/result.hpp"
 #include "robotd/motion/trajectory.hpp"
 
 namespace robotd::motion {

@@ -1,0 +1,73 @@
+#include "device_executor.hpp"
+
+#include <chrono>
+#include <numbers>
+#include <utility>
+
+namespace robotd::rbtscript::detail {
+namespace {
+
+// A move is done once every joint is this close to its goal (0.1°), and fails if that takes
+// longer than the timeout after the last sample.
+constexpr double kArrivalToleranceRad = 0.1 * std::numbers::pi / 180.0;
+constexpr std::chrono::milliseconds kArrivalTimeout{3000};
+
+}  // namespace
+
+DeviceExecutor::DeviceExecutor(Client& client, motion::TrajectoryStreamer& streamer, const ArmPlanner& planner,
+                               const motion::DeviceIo& io, const std::atomic<bool>& stop, motion::Joints start)
+    : client_(client), streamer_(streamer), planner_(planner), io_(io), stop_(stop), held_(std::move(start)) {}
+
+Result<void> DeviceExecutor::stream(const motion::SampledTrajectory& trajectory, const motion::StreamOptions& options) {
+  auto report = streamer_.stream(trajectory, stop_, options);
+  if (!report) return report.error();
+  if (report.value().end == motion::StreamEnd::kStopped) {
+    held_ = report.value().last_measured_rad;
+    return Error{ErrorCode::kRefused, "stopped: " + report.value().summary};
+  }
+  return {};
+}
+
+Result<void> DeviceExecutor::follow(const Result<PlannedMove>& move) {
+  if (!move) return move.error();
+  const motion::Trajectory& planned = move.value().trajectory;
+  motion::StreamOptions options;
+  if (move.value().tracking == Tracking::kSpeedOnly) {
+    options.tracking = motion::Tracking::kSpeedOnly;  // misses its goal by design: no arrival to wait for
+  } else {
+    options.arrival = motion::Arrival{kArrivalToleranceRad, kArrivalTimeout};
+  }
+  const motion::SampledTrajectory samples{planned.dt_s, planned.positions, planned.velocities};
+  if (auto streamed = stream(samples, options); !streamed) return streamed;
+  held_ = planned.positions.back();
+  return {};
+}
+
+Result<void> DeviceExecutor::delay(const Delay& statement) {
+  if (statement.seconds <= 0) return {};
+  // Two equal samples `seconds` apart: the streamer keeps commanding the held position, which
+  // keeps the session alive and watches for a stop, an e-stop or a fault all the while.
+  const motion::Joints rest(held_.size(), 0.0);
+  return stream(motion::SampledTrajectory{statement.seconds, {held_, held_}, {rest, rest}}, {});
+}
+
+Result<void> DeviceExecutor::call(const Result<motion::DeviceCall>& call) {
+  if (!call) return call.error();
+  auto done = io_.run(client_, call.value());
+  if (!done) return done.error();
+  return {};
+}
+
+Result<void> DeviceExecutor::output(const Output& statement) {
+  return call(io_.output(statement.number, statement.level == Level::kHigh));
+}
+
+Result<void> DeviceExecutor::gripper_calibrate(const GripperCalibrate& /*statement*/) {
+  return call(io_.gripper_calibrate());
+}
+
+Result<void> DeviceExecutor::gripper(const Gripper& statement) {
+  return call(io_.gripper({statement.position, statement.speed, statement.current_ma}));
+}
+
+}  // namespace robotd::rbtscript::detail
