@@ -108,6 +108,7 @@ Json to_json(const robotd::DeviceInfo& device) {
               {"driver", device.driver},
               {"driver_version", device.driver_version},
               {"model", device.model},
+              {"kinematic_model", device.kinematic_model},
               {"rate_hz", device.rate_hz},
               {"native_rate_hz", device.native_rate_hz},
               {"joint_names", device.joint_names},

@@ -57,11 +57,12 @@ std::vector<std::pair<std::string, std::uint64_t>> nonzero_rejections(const robo
 }  // namespace
 
 std::string device_table(const std::vector<robotd::DeviceInfo>& devices) {
-  TextTable table({"NAME", "DRIVER", "MODEL", "JOINTS", "RATE Hz", "CONTROL MODES", "STATE"});
+  TextTable table({"NAME", "DRIVER", "MODEL", "KINEMATIC MODEL", "JOINTS", "RATE Hz", "CONTROL MODES", "STATE"});
   for (const auto& device : devices) {
     table.add_row({device.name, device.driver + (device.driver_version.empty() ? "" : " " + device.driver_version),
-                   device.model, std::to_string(device.joint_names.size()), fixed(device.rate_hz, 0),
-                   join(device.control_modes, ","), std::string(robotd::to_string(device.state))});
+                   device.model, device.kinematic_model.empty() ? "-" : device.kinematic_model,
+                   std::to_string(device.joint_names.size()), fixed(device.rate_hz, 0), join(device.control_modes, ","),
+                   std::string(robotd::to_string(device.state))});
   }
   return table.render();
 }

@@ -8,7 +8,8 @@
 
 namespace robotctl {
 
-/// One row per device: name, driver and version, model, joints, rate, control modes, state.
+/// One row per device: name, driver and version, model, kinematic model (the arm
+/// model clients plan with, "-" when none), joints, rate, control modes, state.
 std::string device_table(const std::vector<robotd::DeviceInfo>& devices);
 /// A block: state, fault, e-stop, loop timing, command counters, driver values.
 std::string device_status_text(const robotd::DeviceStatus& status);

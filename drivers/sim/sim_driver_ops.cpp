@@ -128,6 +128,7 @@ std::string fault_text(const driver::FaultInfo& fault) {
 driver::DeviceDescription SimDriver::describe() const {
   driver::DeviceDescription description;
   description.model = params_.model;
+  description.kinematic_model = params_.kinematic_model;
   description.native_rate_hz = kNativeRateHz;
   for (const SimJointParams& joint : params_.joints) {
     description.joints.push_back(driver::JointDescription{

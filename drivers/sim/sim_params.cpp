@@ -154,6 +154,7 @@ Result<SimParams> parse_sim_params(const nlohmann::json& params) {
   JsonReader reader(params, "", errors);
   SimParams out;
   out.model = reader.string_or("model", out.model);
+  out.kinematic_model = reader.string_or("kinematic_model", out.kinematic_model);
   out.imu = reader.boolean_or("imu", out.imu);
 
   SimJointParams defaults;

@@ -33,6 +33,9 @@ struct SimJointParams {
 
 struct SimParams {
   std::string model = "robotd sim";
+  // The arm model clients plan with (DeviceDescription::kinematic_model): lets a sim arm stand in
+  // for a vendor arm in client-side planning. "" = none.
+  std::string kinematic_model;
   std::vector<SimJointParams> joints;
   bool imu = false;
 };

@@ -127,6 +127,7 @@ void device_info_to_c(const DeviceInfo& in, robotd_msgs_msg_dds__DeviceInfo_& ou
   out.driver = c_string(in.driver);
   out.driver_version = c_string(in.driver_version);
   out.model = c_string(in.model);
+  out.kinematic_model = c_string(in.kinematic_model);
   out.rate_hz = in.rate_hz;
   out.native_rate_hz = in.native_rate_hz;
   view_string_sequence(out.joint_names, in.joint_names, arena);
@@ -147,6 +148,7 @@ DeviceInfo device_info_from_c(const robotd_msgs_msg_dds__DeviceInfo_& in) {
   out.driver = copy_string(in.driver);
   out.driver_version = copy_string(in.driver_version);
   out.model = copy_string(in.model);
+  out.kinematic_model = copy_string(in.kinematic_model);
   out.rate_hz = in.rate_hz;
   out.native_rate_hz = in.native_rate_hz;
   out.joint_names = copy_string_sequence(in.joint_names);

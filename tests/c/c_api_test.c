@@ -172,6 +172,7 @@ static bool list_devices_fills_what_fits(fixture* f) {
   CHECK(strcmp(arm->name, "arm") == 0);
   CHECK(strcmp(arm->driver, "sim") == 0);
   CHECK(strcmp(arm->model, "test arm") == 0);
+  CHECK(strcmp(arm->kinematic_model, "parol6") == 0);
   CHECK(arm->state == ROBOTD_DEVICE_RUNNING);
   CHECK(arm->rate_hz == 1000.0);
   CHECK(arm->joint_count == 6);
@@ -180,6 +181,7 @@ static bool list_devices_fills_what_fits(fixture* f) {
   CHECK(arm->velocity_max[5] == 2.0 && arm->effort_max[5] == 40.0);
   CHECK(strcmp(gripper->name, "gripper") == 0);
   CHECK(gripper->joint_count == 2);
+  CHECK(strcmp(gripper->kinematic_model, "") == 0);
   return true;
 }
 

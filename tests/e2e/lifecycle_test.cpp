@@ -123,12 +123,15 @@ TEST_F(LifecycleTest, OptionalDeviceThatFailsLeavesTheOthersRunning) {
 }
 
 TEST_F(LifecycleTest, ListDevicesDescribesWhatEachDeviceSupports) {
-  start_robotd();
+  nlohmann::json config = sim_arm_config(domain_.id());
+  config["devices"][0]["params"]["kinematic_model"] = "parol6";
+  start_robotd(config);
   auto devices = client().list_devices();
   ASSERT_TRUE(devices);
   ASSERT_EQ(devices.value().size(), 1U);
   const DeviceInfo& arm = devices.value()[0];
   EXPECT_EQ(arm.driver, "sim");
+  EXPECT_EQ(arm.kinematic_model, "parol6");
   EXPECT_EQ(arm.joint_names.size(), 6U);
   EXPECT_EQ(arm.control_modes, (std::vector<std::string>{"POSITION", "TORQUE", "MIXED"}));
   EXPECT_EQ(arm.behavior_map, (std::vector<std::int32_t>{0, 1, 2}));

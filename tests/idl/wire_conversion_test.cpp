@@ -44,9 +44,9 @@ inline auto fields(const CommandCounters& m) {
                   m.rejected_out_of_range, m.rejected_estop, m.rejected_fault, m.dropped_stale);
 }
 inline auto fields(const DeviceInfo& m) {
-  return std::tie(m.name, m.driver, m.driver_version, m.model, m.rate_hz, m.native_rate_hz, m.joint_names,
-                  m.position_min, m.position_max, m.velocity_max, m.acceleration_max, m.effort_max, m.control_modes,
-                  m.behavior_map, m.ops, m.state);
+  return std::tie(m.name, m.driver, m.driver_version, m.model, m.kinematic_model, m.rate_hz, m.native_rate_hz,
+                  m.joint_names, m.position_min, m.position_max, m.velocity_max, m.acceleration_max, m.effort_max,
+                  m.control_modes, m.behavior_map, m.ops, m.state);
 }
 inline auto fields(const ControlCommand& m) {
   return std::tie(m.header, m.uuid, m.motor_ids, m.positions, m.velocities, m.kp, m.kd, m.torques, m.device,
@@ -152,6 +152,7 @@ DeviceInfo device_info(int n) {
   d.driver = "sim";
   d.driver_version = "1.2.3";
   d.model = "six-axis";
+  d.kinematic_model = "parol6";
   d.rate_hz = 1000.0;
   d.native_rate_hz = 250.0;
   d.joint_names = {"j1", "j2"};

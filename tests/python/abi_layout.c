@@ -23,12 +23,12 @@ int main(void) {
          (FIELD(robotd_client_options, domain_id), FIELD(robotd_client_options, network_interface),
           FIELD(robotd_client_options, peers), FIELD(robotd_client_options, multicast),
           FIELD(robotd_client_options, node_name), FIELD(robotd_client_options, service_timeout_ms)));
-  STRUCT(robotd_device_info,
-         (FIELD(robotd_device_info, name), FIELD(robotd_device_info, driver), FIELD(robotd_device_info, model),
-          FIELD(robotd_device_info, state), FIELD(robotd_device_info, rate_hz), FIELD(robotd_device_info, joint_count),
-          FIELD(robotd_device_info, joint_names), FIELD(robotd_device_info, position_min),
-          FIELD(robotd_device_info, position_max), FIELD(robotd_device_info, velocity_max),
-          FIELD(robotd_device_info, effort_max)));
+  STRUCT(robotd_device_info, (FIELD(robotd_device_info, name), FIELD(robotd_device_info, driver),
+                              FIELD(robotd_device_info, model), FIELD(robotd_device_info, kinematic_model),
+                              FIELD(robotd_device_info, state), FIELD(robotd_device_info, rate_hz),
+                              FIELD(robotd_device_info, joint_count), FIELD(robotd_device_info, joint_names),
+                              FIELD(robotd_device_info, position_min), FIELD(robotd_device_info, position_max),
+                              FIELD(robotd_device_info, velocity_max), FIELD(robotd_device_info, effort_max)));
   STRUCT(robotd_session_request,
          (FIELD(robotd_session_request, device), FIELD(robotd_session_request, motor_ids),
           FIELD(robotd_session_request, motor_count), FIELD(robotd_session_request, mode),

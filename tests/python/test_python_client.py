@@ -44,7 +44,7 @@ class WithoutRobotdTest(unittest.TestCase):
     """What a caller gets before anything reaches robotd."""
 
     def test_versions(self):
-        self.assertEqual(robotd.C_API_VERSION, 4)
+        self.assertEqual(robotd.C_API_VERSION, 5)
         self.assertRegex(robotd.__version__, r"^\d+\.\d+\.\d+$")
 
     def test_no_robotd_on_the_domain_is_not_available_and_says_what_to_check(self):
@@ -71,7 +71,9 @@ class ClientTest(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.daemon = RobotdDaemon(ROBOTD, [sim_arm()]).__enter__()
+        arm = sim_arm()
+        arm["params"]["kinematic_model"] = "parol6"
+        cls.daemon = RobotdDaemon(ROBOTD, [arm]).__enter__()
         cls.daemon.wait_until_serving()
         cls.client = robotd.Client(cls.daemon.domain_id, node_name="python_test")
 
@@ -83,6 +85,7 @@ class ClientTest(unittest.TestCase):
     def test_devices_describe_the_arm_and_its_limits(self):
         [arm] = self.client.devices()
         self.assertEqual((arm.name, arm.driver, arm.state), ("arm", "sim", robotd.DeviceState.RUNNING))
+        self.assertEqual(arm.kinematic_model, "parol6")
         self.assertEqual(arm.joint_names, ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6"))
         self.assertEqual(len(arm.position_max), 6)
         self.assertTrue(all(low < high for low, high in zip(arm.position_min, arm.position_max)))

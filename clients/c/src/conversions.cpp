@@ -53,6 +53,7 @@ void to_c(const DeviceInfo& info, robotd_device_info& out) {
   copy_text(info.name, out.name);
   copy_text(info.driver, out.driver);
   copy_text(info.model, out.model);
+  copy_text(info.kinematic_model, out.kinematic_model);
   out.state = static_cast<robotd_device_state>(info.state);
   out.rate_hz = info.rate_hz;
   out.joint_count = joint_count(info.joint_names.size());

@@ -8,7 +8,7 @@ from ctypes import c_size_t, c_uint64, c_void_p
 from . import errors
 from .types import DeviceInfo, DeviceState, DeviceStatus, JointState, LowRateAction, SessionInfo, TickState
 
-C_API_VERSION = 4  # the robotd/robotd.h this module mirrors
+C_API_VERSION = 5  # the robotd/robotd.h this module mirrors
 MAX_JOINTS = 64
 NAME_CAPACITY = 64
 UUID_CAPACITY = 40
@@ -27,7 +27,7 @@ class ClientOptions(Structure):
 
 
 class DeviceInfoStruct(Structure):
-    _fields_ = [("name", _Name), ("driver", _Name), ("model", _Name), ("state", _Enum), ("rate_hz", c_double),
+    _fields_ = [("name", _Name), ("driver", _Name), ("model", _Name), ("kinematic_model", _Name), ("state", _Enum), ("rate_hz", c_double),
                 ("joint_count", c_size_t), ("joint_names", _Name * MAX_JOINTS), ("position_min", _Doubles),
                 ("position_max", _Doubles), ("velocity_max", _Doubles), ("effort_max", _Doubles)]
 
@@ -226,6 +226,7 @@ def _vector(array, count):
 def device_info(raw):
     count = raw.joint_count
     return DeviceInfo(name=text(raw.name), driver=text(raw.driver), model=text(raw.model),
+                      kinematic_model=text(raw.kinematic_model),
                       state=DeviceState(raw.state), rate_hz=raw.rate_hz,
                       joint_names=tuple(text(raw.joint_names[j]) for j in range(count)),
                       position_min=_vector(raw.position_min, count), position_max=_vector(raw.position_max, count),

@@ -59,6 +59,7 @@ class DeviceInfo:
     name: str
     driver: str
     model: str
+    kinematic_model: str  # the arm model clients plan motion with, e.g. "parol6"; "" when none
     state: DeviceState
     rate_hz: float
     joint_names: tuple

@@ -14,7 +14,8 @@ Verb add_devices_verb(CLI::App& app) {
   CLI::App* command = app.add_subcommand("devices", "List the devices robotd serves");
   command->add_flag("--json", *json, "Print robotd's device list as JSON (limits, ops, behaviour map included)");
   command->footer(
-      "One row per device: name, driver and version, model, joints, loop rate, control modes, state.\n\n"
+      "One row per device: name, driver and version, model, kinematic model (the arm model clients plan motion with), "
+      "joints, loop rate, control modes, state.\n\n"
       "Example:\n  robotctl devices\n  robotctl --domain 7 devices --json");
   return Verb{command, false, [json](VerbContext& context) {
                 auto devices = context.client.list_devices();

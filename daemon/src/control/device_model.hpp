@@ -19,6 +19,7 @@ struct DeviceModel {
   std::string driver;
   std::string driver_version;
   std::string model;
+  std::string kinematic_model;  // the arm model clients plan with, "" when none
   double rate_hz = 1000;
   double native_rate_hz = 1000;
   std::vector<std::string> joint_names;

@@ -56,6 +56,7 @@ Result<void> Device::configure() {
   model_.driver = config_.driver;
   model_.driver_version = plugin_->version();
   model_.model = description.model;
+  model_.kinematic_model = description.kinematic_model;
   model_.rate_hz = config_.rate_hz;
   model_.native_rate_hz = description.native_rate_hz;
   model_.supports_torque = description.supports_torque;

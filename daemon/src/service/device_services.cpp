@@ -21,9 +21,6 @@ constexpr double kZeroTolerance_rad = 0.1;  // PI Plus: zeroing succeeded when e
 // ticks, and the time an e-stop takes to pre-empt maintenance.
 constexpr auto kEstopConfirmation = std::chrono::milliseconds(50);
 
-// Ends an op's line in DeviceInfo.ops when robotd refuses the op while a session holds a motor.
-constexpr std::string_view kNeedsFreeMotorsMark = " [needs free motors]";
-
 DeviceCallResponse call_failed(std::string message) { return DeviceCallResponse{false, std::move(message), ""}; }
 
 // Holds a device's maintenance reservation (SessionService::reserve_for_maintenance) for a scope.
@@ -70,6 +67,7 @@ ListDevicesResponse DeviceServices::list_devices(const ListDevicesRequest& /*req
     info.driver = model.driver;
     info.driver_version = model.driver_version;
     info.model = model.model;
+    info.kinematic_model = model.kinematic_model;
     info.rate_hz = model.rate_hz;
     info.native_rate_hz = model.native_rate_hz;
     info.joint_names = model.joint_names;

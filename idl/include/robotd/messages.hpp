@@ -253,6 +253,7 @@ struct DeviceInfo {
   std::string driver;
   std::string driver_version;
   std::string model;
+  std::string kinematic_model;  // the arm model clients plan with (robotd::kinematics), "" when none
   double rate_hz = 0;
   double native_rate_hz = 0;
   std::vector<std::string> joint_names;
@@ -263,9 +264,12 @@ struct DeviceInfo {
   std::vector<double> effort_max;        // N·m
   std::vector<std::string> control_modes;
   std::vector<std::int32_t> behavior_map;  // applied behaviour for KEEP, DAMPING, ZERO_TORQUE
-  std::vector<std::string> ops;            // device_call ops, "name: help"
+  std::vector<std::string> ops;            // device_call ops, "name: help" (+ kNeedsFreeMotorsMark)
   DeviceState state = DeviceState::kConnecting;
 };
+
+/// Ends an op's line in DeviceInfo.ops when robotd refuses the op while a session holds a motor.
+inline constexpr std::string_view kNeedsFreeMotorsMark = " [needs free motors]";
 
 // Services. Each request/response pair mirrors robotd_msgs/srv/<Name>.srv.
 

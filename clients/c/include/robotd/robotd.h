@@ -57,7 +57,7 @@ extern "C" {
 /* This is a C header: typedef is its only spelling. NOLINTBEGIN(modernize-use-using) */
 
 /* The version of this API: changes when a function or struct of this header changes. */
-#define ROBOTD_C_API_VERSION 4
+#define ROBOTD_C_API_VERSION 5
 
 #define ROBOTD_MAX_JOINTS 64     /* joints per device (the driver API's limit) */
 #define ROBOTD_NAME_CAPACITY 64  /* device, driver, model and joint names, NUL included */
@@ -149,6 +149,7 @@ typedef struct robotd_device_info {
   char name[ROBOTD_NAME_CAPACITY];
   char driver[ROBOTD_NAME_CAPACITY];
   char model[ROBOTD_NAME_CAPACITY];
+  char kinematic_model[ROBOTD_NAME_CAPACITY]; /* the arm model clients plan motion with, e.g. "parol6"; "" when none */
   robotd_device_state state;
   double rate_hz; /* the control loop's rate */
   size_t joint_count;
