@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
   const std::vector<Verb> verbs = {add_devices_verb(app), add_status_verb(app),  add_sessions_verb(app),
                                    add_acquire_verb(app), add_release_verb(app), add_move_verb(app),
                                    add_estop_verb(app),   add_echo_verb(app),    add_record_verb(app),
-                                   add_replay_verb(app),  add_call_verb(app),    add_top_verb(app)};
+                                   add_replay_verb(app),  add_run_verb(app),     add_call_verb(app),
+                                   add_top_verb(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

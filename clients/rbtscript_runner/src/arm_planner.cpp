@@ -26,7 +26,10 @@ motion::MoveTiming timing_of(const JointMotion& motion) {
 }
 
 motion::MoveTiming timing_of(const CartesianMotion& motion) {
-  return timing_of(JointMotion{.duration_s = motion.duration_s, .profile = motion.profile});
+  JointMotion joint;
+  joint.duration_s = motion.duration_s;
+  joint.profile = motion.profile;
+  return timing_of(joint);
 }
 
 Eigen::Isometry3d transform_of(const kinematics::ArmModel& model, const Pose& pose) {

@@ -33,6 +33,7 @@ Verb add_estop_verb(CLI::App& app);
 Verb add_echo_verb(CLI::App& app);
 Verb add_record_verb(CLI::App& app);
 Verb add_replay_verb(CLI::App& app);
+Verb add_run_verb(CLI::App& app);
 Verb add_call_verb(CLI::App& app);
 Verb add_top_verb(CLI::App& app);
 
