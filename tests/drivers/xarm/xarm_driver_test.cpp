@@ -373,12 +373,13 @@ TEST_F(XarmDriverTest, PlannedMovesQueueInPositionModeAndCanWaitForTheArm) {
 
   enable_through_ops();
   const Joints goal{0.3, -0.2, -0.4, 0.1, 0.5, -0.3};
+  // Read before the move starts: a test thread starved for the whole move must still see it.
+  const double first = loop.feedback().joints[4].position_rad;
   const auto t0 = std::chrono::steady_clock::now();
   auto moved = std::async(std::launch::async, [&] {
     return driver_.call("move_joint", {{"joints_rad", goal}, {"speed_rad_s", 1.0}, {"wait", true}, {"timeout_s", 10}});
   });
   // While the call waits, the loop keeps reading fresh feedback.
-  const double first = loop.feedback().joints[4].position_rad;
   EXPECT_TRUE(
       loop.wait_for([&](DriverLoop& l) { return std::fabs(l.feedback().joints[4].position_rad - first) > 0.05; }, 3s));
   const auto result = moved.get();
@@ -400,12 +401,13 @@ TEST_F(XarmDriverTest, PlannedMovesQueueInPositionModeAndCanWaitForTheArm) {
   EXPECT_TRUE(line.value("completed", false)) << line.dump();
   EXPECT_NEAR(call("get_tcp_pose")["z_m"].get<double>(), pose["z_m"].get<double>(), 1e-3);
 
-  // Without wait: queued behind each other in the command cache.
-  call("sleep_instruction", {{"seconds", 0.3}});
+  // Without wait: queued behind each other in the command cache (the pause long enough that the
+  // two calls after it find the move still queued however slowly this test runs).
+  call("sleep_instruction", {{"seconds", 1.0}});
   const nlohmann::json queued = call("move_gohome", {{"speed_rad_s", 1.5}});
   EXPECT_GE(queued["cmdnum"].get<int>(), 1) << queued.dump();
   EXPECT_GE(call("get_cmdnum")["cmdnum"].get<int>(), 1);
-  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), Joints{}, 2e-3); }, 5s));
+  EXPECT_TRUE(loop.wait_for([&](DriverLoop& l) { return joints_near(l.feedback(), Joints{}, 2e-3); }, 10s));
   EXPECT_TRUE(loop.wait_for([&](DriverLoop& /*l*/) { return call("get_state")["state"] == kStateSleeping; }));
 
   // A session owns the arm: planned moves are refused until it ends.
