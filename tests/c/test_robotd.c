@@ -21,9 +21,10 @@ enum { kFirstDomain = 100, kLastDomain = 229 };
 
 static const char kArm[] =
     "{\"name\": \"arm\", \"driver\": \"sim\", \"rate_hz\": 1000, \"realtime\": \"prefer\", \"params\": {"
-    "\"model\": \"test arm\", \"kinematic_model\": \"parol6\", \"joint_defaults\": {\"position_min_rad\": -2.5, \"position_max_rad\": 2.5, "
-    "\"velocity_max_rad_s\": 2.0, \"acceleration_max_rad_s2\": 10.0, \"effort_max_nm\": 40.0, \"kp_max\": 500.0, "
-    "\"kd_max\": 50.0, \"default_kp\": 300.0, \"default_kd\": 10.0, \"inertia_kg_m2\": 0.05, "
+    "\"model\": \"test arm\", \"kinematic_model\": \"parol6\", \"joint_defaults\": {\"position_min_rad\": -2.5, "
+    "\"position_max_rad\": 2.5, \"velocity_max_rad_s\": 2.0, \"acceleration_max_rad_s2\": 10.0, "
+    "\"effort_max_nm\": 40.0, \"kp_max\": 500.0, \"kd_max\": 50.0, \"default_kp\": 300.0, \"default_kd\": 10.0, "
+    "\"inertia_kg_m2\": 0.05, "
     "\"damping_nm_s_rad\": 0.3}, \"joints\": [{\"name\": \"joint1\"}, {\"name\": \"joint2\"}, "
     "{\"name\": \"joint3\"}, {\"name\": \"joint4\"}, {\"name\": \"joint5\"}, {\"name\": \"joint6\"}]}}";
 static const char kGripper[] =

@@ -43,6 +43,7 @@ def robotd_config(domain_id):
             "shutdown_behavior": "DAMPING",
             "params": {
                 "model": "robotd simulated 6-joint arm",
+                "kinematic_model": "parol6",
                 "joint_count": ARM_JOINTS,
                 "joint_defaults": {
                     "position_min_rad": -2.6, "position_max_rad": 2.6,
@@ -167,10 +168,12 @@ class RobotctlTest(unittest.TestCase):
         self.assertEqual(len(arm_rows), 1, result.stdout)
         self.assertIn(str(ARM_JOINTS), arm_rows[0])
         self.assertIn("RUNNING", arm_rows[0])
+        self.assertIn("parol6", arm_rows[0])  # KINEMATIC MODEL
 
         devices = json.loads(self.robotctl("devices", "--json").stdout)
         self.assertEqual([device["name"] for device in devices], ["arm"])
         self.assertEqual(len(devices[0]["joint_names"]), ARM_JOINTS)
+        self.assertEqual(devices[0]["kinematic_model"], "parol6")
 
     def test_status_shows_running_and_loop_stats(self):
         result = self.robotctl("status")

@@ -68,7 +68,10 @@ Result<DeviceCall> DeviceIo::gripper(const GripperCommand& command) const {
   for (const std::string& problem :
        {range_problem("position", command.position, 255, " (0 open, 255 closed)"),
         range_problem("speed", command.speed, 255, ""), range_problem("current", command.current_ma, 1300, " mA")}) {
-    if (!problem.empty()) return make_error(ErrorCode::kInvalidArgument, statement + ": " + problem);
+    if (problem.empty()) continue;
+    std::string message = statement + ": ";
+    message += problem;
+    return make_error(ErrorCode::kInvalidArgument, std::move(message));
   }
   const detail::DriverIo* io = detail::find_driver_io(device_.driver);
   if (io == nullptr) return cannot(statement, "Gripper works on the drivers " + detail::known_drivers());

@@ -30,6 +30,14 @@ std::string progress_text(double fraction, double duration_s) {
   return fixed(100.0 * fraction, 0) + " % (" + fixed(fraction * duration_s, 2) + " of " + fixed(duration_s, 2) + " s)";
 }
 
+// "ESTOP (e-stop engaged by 'teleop')": the state, and robotd's text when it says more.
+std::string state_description(DeviceState state, const std::string& text) {
+  std::string name(to_string(state));
+  if (text.empty() || text == name) return name;
+  if (text.rfind(name, 0) == 0) return text;  // robotd's text often starts with the state
+  return name + " (" + text + ")";
+}
+
 // The joint farthest from `target`: its index and distance.
 std::pair<std::size_t, double> farthest(const std::vector<double>& actual, const std::vector<double>& target) {
   std::pair<std::size_t, double> worst{0, 0};
@@ -86,8 +94,7 @@ Result<void> TrajectoryStreamer::still_running(const std::string& where) {
   if (condition.state != DeviceState::kRunning) {
     (void)hold();  // robotd refuses it in an e-stop or fault; it keeps the arm still anywhere else
     return make_error(ErrorCode::kRefused, "device " + device + " left RUNNING: it is " +
-                                               std::string(to_string(condition.state)) +
-                                               (condition.text.empty() ? "" : " (" + condition.text + ")") +
+                                               state_description(condition.state, condition.text) +
                                                "; the trajectory stopped at " + where);
   }
   auto info = session_->info(0ms);
@@ -95,8 +102,7 @@ Result<void> TrajectoryStreamer::still_running(const std::string& where) {
     // Why it ended shows in the device's next status (an e-stop ends every session of the device).
     std::string device_now;
     if (auto status = client_->next_device_status(session_->device(), 500ms); status) {
-      device_now = "; device " + device + " is " + std::string(to_string(status.value().state)) +
-                   (status.value().state_text.empty() ? "" : " (" + status.value().state_text + ")");
+      device_now = "; device " + device + " is " + state_description(status.value().state, status.value().state_text);
     }
     return make_error(ErrorCode::kRefused, info.error().message + device_now + "; the trajectory stopped at " + where);
   }
