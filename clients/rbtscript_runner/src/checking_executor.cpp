@@ -28,12 +28,7 @@ Result<void> CheckingExecutor::check(const Result<PlannedMove>& move) {
 }
 
 Result<void> CheckingExecutor::check(const Result<motion::DeviceCall>& call) {
-  if (!call) {
-    keep(call.error());
-  } else if (call.value().needs_free_motors) {
-    keep(Error{ErrorCode::kInvalidArgument, "its op '" + call.value().op + "' of device '" + planner_.device().name +
-                                                "' needs free motors, and the script holds them"});
-  }
+  if (!call) keep(call.error());
   return {};
 }
 

@@ -14,18 +14,19 @@ constexpr std::chrono::milliseconds kArrivalTimeout{3000};
 
 }  // namespace
 
-DeviceExecutor::DeviceExecutor(Client& client, motion::TrajectoryStreamer& streamer, const ArmPlanner& planner,
-                               const motion::DeviceIo& io, const std::atomic<bool>& stop, motion::Joints start)
-    : client_(client), streamer_(streamer), planner_(planner), io_(io), stop_(stop), held_(std::move(start)) {}
+DeviceExecutor::DeviceExecutor(ArmSession& arm, const ArmPlanner& planner, const motion::DeviceIo& io,
+                               const std::atomic<bool>& stop, motion::Joints start)
+    : arm_(arm), planner_(planner), io_(io), stop_(stop), held_(std::move(start)) {}
 
-Result<void> DeviceExecutor::stream(const motion::SampledTrajectory& trajectory, const motion::StreamOptions& options) {
-  auto report = streamer_.stream(trajectory, stop_, options);
+Result<motion::Joints> DeviceExecutor::stream(const motion::SampledTrajectory& trajectory,
+                                              const motion::StreamOptions& options) {
+  auto report = arm_.streamer().stream(trajectory, stop_, options);
   if (!report) return report.error();
   if (report.value().end == motion::StreamEnd::kStopped) {
-    held_ = report.value().last_measured_rad;
+    held_ = report.value().last_measured_rad;  // the streamer holds the arm there
     return Error{ErrorCode::kRefused, "stopped: " + report.value().summary};
   }
-  return {};
+  return std::move(report).value().last_measured_rad;
 }
 
 Result<void> DeviceExecutor::follow(const Result<PlannedMove>& move) {
@@ -38,8 +39,10 @@ Result<void> DeviceExecutor::follow(const Result<PlannedMove>& move) {
     options.arrival = motion::Arrival{kArrivalToleranceRad, kArrivalTimeout};
   }
   const motion::SampledTrajectory samples{planned.dt_s, planned.positions, planned.velocities};
-  if (auto streamed = stream(samples, options); !streamed) return streamed;
-  held_ = planned.positions.back();
+  auto measured = stream(samples, options);
+  if (!measured) return measured.error();
+  // A speed-only move ends short of its goal by design: the next move starts where it ended.
+  held_ = options.tracking == motion::Tracking::kSpeedOnly ? std::move(measured).value() : planned.positions.back();
   return {};
 }
 
@@ -48,12 +51,14 @@ Result<void> DeviceExecutor::delay(const Delay& statement) {
   // Two equal samples `seconds` apart: the streamer keeps commanding the held position, which
   // keeps the session alive and watches for a stop, an e-stop or a fault all the while.
   const motion::Joints rest(held_.size(), 0.0);
-  return stream(motion::SampledTrajectory{statement.seconds, {held_, held_}, {rest, rest}}, {});
+  auto held = stream(motion::SampledTrajectory{statement.seconds, {held_, held_}, {rest, rest}}, {});
+  if (!held) return held.error();
+  return {};
 }
 
 Result<void> DeviceExecutor::call(const Result<motion::DeviceCall>& call) {
   if (!call) return call.error();
-  auto done = io_.run(client_, call.value());
+  auto done = arm_.run(io_, call.value());
   if (!done) return done.error();
   return {};
 }

@@ -6,9 +6,8 @@
 
 #include <atomic>
 
-#include "robotd/client/client.hpp"
+#include "arm_session.hpp"
 #include "robotd/motion/device_io.hpp"
-#include "robotd/motion/trajectory_streamer.hpp"
 #include "robotd/rbtscript/arm_planner.hpp"
 #include "robotd/rbtscript/interpreter.hpp"
 
@@ -16,8 +15,8 @@ namespace robotd::rbtscript::detail {
 
 class DeviceExecutor final : public Executor {
  public:
-  DeviceExecutor(Client& client, motion::TrajectoryStreamer& streamer, const ArmPlanner& planner,
-                 const motion::DeviceIo& io, const std::atomic<bool>& stop, motion::Joints start);
+  DeviceExecutor(ArmSession& arm, const ArmPlanner& planner, const motion::DeviceIo& io,
+                 const std::atomic<bool>& stop, motion::Joints start);
 
   Result<void> move_joint(const MoveJoint& statement) override { return follow(planner_.plan(statement, held_)); }
   Result<void> move_pose(const MovePose& statement) override { return follow(planner_.plan(statement, held_)); }
@@ -32,11 +31,11 @@ class DeviceExecutor final : public Executor {
 
  private:
   Result<void> follow(const Result<PlannedMove>& move);
-  Result<void> stream(const motion::SampledTrajectory& trajectory, const motion::StreamOptions& options);
+  // Streams `trajectory`; where the arm was measured when it ended, or why it did not complete.
+  Result<motion::Joints> stream(const motion::SampledTrajectory& trajectory, const motion::StreamOptions& options);
   Result<void> call(const Result<motion::DeviceCall>& call);
 
-  Client& client_;
-  motion::TrajectoryStreamer& streamer_;
+  ArmSession& arm_;
   const ArmPlanner& planner_;
   const motion::DeviceIo& io_;
   const std::atomic<bool>& stop_;

@@ -2,10 +2,10 @@
 
 #include <utility>
 
+#include "arm_session.hpp"
 #include "checking_executor.hpp"
 #include "device_executor.hpp"
 #include "robotd/motion/device_io.hpp"
-#include "robotd/motion/trajectory_streamer.hpp"
 #include "robotd/rbtscript/arm_planner.hpp"
 
 namespace robotd::rbtscript {
@@ -64,16 +64,14 @@ Result<DeviceRunReport> run_on_device(Client& client, const Program& program, co
   request.timeout = options.session_timeout;
   request.on_release = Behavior::kKeep;
   request.policy_name = "rbtscript";
-  auto session = client.request_control(request);
-  if (!session) return session.error();
-  auto streamer = motion::TrajectoryStreamer::create(client, session.value());
-  if (!streamer) return streamer.error();
+  detail::ArmSession arm(client, request);
+  if (auto opened = arm.open(); !opened) return opened.error();
   // The arm may have moved since the dry run looked: plan the first move from where it is now.
   auto now = measured_joints(client, device.value());
   if (!now) return now.error();
   static const std::atomic<bool> kNeverStop{false};
   const std::atomic<bool>& stop = options.stop != nullptr ? *options.stop : kNeverStop;
-  detail::DeviceExecutor executor(client, streamer.value(), planner.value(), io, stop, std::move(now).value());
+  detail::DeviceExecutor executor(arm, planner.value(), io, stop, std::move(now).value());
   report.outcome = run_program(program, executor, RunOptions{options.loops, &stop, options.on_statement});
   return report;
 }
