@@ -1,5 +1,5 @@
-// The table of arm models: each vendor's published DH table and joint limits (docs/drivers/
-// parol6.md, piper.md, xarm.md, realman.md name the sources).
+// The table of arm models: each vendor's published DH table and joint limits, each with its
+// public source.
 #include <algorithm>
 #include <cstddef>
 #include <initializer_list>
@@ -42,8 +42,9 @@ ArmModel with_flange(ArmModel arm, std::string_view name, double length_mm) {
   return arm;
 }
 
-// PAROL6 (the commander's standard DH table, parol6_serial.md §11.1): link 6 carries the
-// commander's tool, 62.8 mm along the flange axis and 45.25 mm across it; limits from §10.2.
+// PAROL6: the standard DH table of the PAROL6 commander software (github.com/PCrnjak/
+// PAROL-commander-software); link 6 carries the commander's tool, 62.8 mm along the flange axis
+// and 45.25 mm across it. Limits: the commander's joint limits (as drivers/parol6/codec/joint_units).
 ArmModel parol6() {
   return model("parol6", DhConvention::kStandard,
                {mm_deg(23.42, -90, 110.50, 0), mm_deg(180.00, 180, 0, 0), mm_deg(-43.50, 90, 0, 0),
@@ -52,9 +53,10 @@ ArmModel parol6() {
                {123.046875, -3.375, 287.8675, 105.46975, 90, 360});
 }
 
-// PiPER (piper_sdk's modified DH table to the J6 flange, piper_can.md §9): the firmware's J2/J3
-// zero offsets are θ2 −172.22°, θ3 −102.78° from S-V1.6-3 on (the SDK's dh_is_offset = 1), 2°
-// apart on older firmware (dh_is_offset = 0); limits from the SDK (§8.1, in rad there).
+// PiPER: the modified DH table to the J6 flange of AgileX's piper_sdk (github.com/agilexrobotics/
+// piper_sdk, C_PiperForwardKinematics); the firmware's J2/J3 zero offsets are θ2 −172.22°,
+// θ3 −102.78° from S-V1.6-3 on (the SDK's dh_is_offset = 1), 2° apart on older firmware
+// (dh_is_offset = 0). Limits: the SDK's joint limits (rad there; as drivers/piper/driver/piper_params).
 ArmModel piper(std::string_view name, double theta2_deg, double theta3_deg) {
   ArmModel arm = model(name, DhConvention::kModified,
                        {mm_deg(0, 0, 123.0, 0), mm_deg(0, -90, 0, theta2_deg), mm_deg(285.03, 0, 0, theta3_deg),
@@ -66,7 +68,7 @@ ArmModel piper(std::string_view name, double theta2_deg, double theta3_deg) {
 }
 
 // UFACTORY's standard D-H tables ("Kinematic and Dynamic Parameters", xArm-Developer/ufactory_docs)
-// and joint ranges (xarm_codec models, xarm_tcp.md §7). The xArm 5 and 6 upper arm is 284.5 mm up
+// and joint ranges (the xArm Python SDK's, as drivers/xarm/codec/models). The xArm 5 and 6 upper arm is 284.5 mm up
 // and 53.5 mm forward: a2 = 289.48866 mm at −79.34995°; the xArm 5 forearm and wrist fold into
 // a3 = 351.158796 mm (77.5 mm forward, 342.5 mm down).
 constexpr double kXarmUpperArmDeg = -1.3849179 / kDeg;
@@ -109,8 +111,9 @@ ArmModel uf850() {
 }
 
 // RealMan's modified DH tables (rm_docs, robotParameter pages) to the flange of the standard
-// ("-B") version, joint ranges from realman_codec models (realman_json.md §8). The six-axis force
-// ("-6F") versions have a longer flange: a tool along the last axis.
+// ("-B") version, and the joint ranges of those pages' working-space text (as
+// drivers/realman/codec/models). The six-axis force ("-6F") versions have a longer flange: a tool
+// along the last axis.
 ArmModel rm65() {
   return model("rm65", DhConvention::kModified,
                {mm_deg(0, 0, 240.5, 0), mm_deg(0, 90, 0, 90), mm_deg(256, 0, 0, 90), mm_deg(0, 90, 210, 0),

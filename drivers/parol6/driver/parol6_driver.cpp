@@ -50,6 +50,7 @@ Result<void> Parol6Driver::configure(const nlohmann::json& params) {
 driver::DeviceDescription Parol6Driver::describe() const {
   driver::DeviceDescription description;
   description.model = params_.model;
+  description.kinematic_model = kArmModelName;
   description.native_rate_hz = params_.exchange_rate_hz;
   for (int j = 0; j < kJoints; ++j) {
     description.joints.push_back(

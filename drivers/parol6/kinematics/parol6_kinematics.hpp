@@ -1,11 +1,14 @@
-// PAROL6 kinematics (spec §11.1): the commander's standard-DH model to the tool (link 6 carries
-// the 62.8 / 45.25 mm tool offset), a damped-least-squares inverse, and the commander's move
-// timing (trapezoidal or quintic polynomial) for MovePose / MoveCart. Lengths in m, angles in rad.
+// PAROL6 kinematics (spec §11.1) on the shared arm model "parol6" (robotd/kinematics/
+// arm_model.hpp: the commander's standard-DH model to the tool, link 6 carrying the 62.8 / 45.25 mm
+// tool offset, and its roll/pitch/yaw convention), in the driver's 6-joint types; a
+// damped-least-squares inverse, and the commander's move timing (trapezoidal or quintic
+// polynomial) for MovePose / MoveCart. Lengths in m, angles in rad.
 #pragma once
 
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -13,6 +16,9 @@
 #include "codec/parol6_frames.hpp"
 
 namespace robotd::parol6 {
+
+/// The shared arm model (robotd::kinematics::find_arm_model).
+inline constexpr std::string_view kArmModelName = "parol6";
 
 using JointVector = std::array<double, kJoints>;
 

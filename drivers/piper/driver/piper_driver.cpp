@@ -59,6 +59,7 @@ Result<void> PiperDriver::configure(const nlohmann::json& params) {
 driver::DeviceDescription PiperDriver::describe() const {
   driver::DeviceDescription description;
   description.model = params_.model;
+  description.kinematic_model = arm_model_name(params_.dh);
   description.native_rate_hz = params_.command_rate_hz;
   const std::lock_guard lock(limits_mutex_);
   for (std::size_t j = 0; j < params_.joint_count(); ++j) {

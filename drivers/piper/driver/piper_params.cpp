@@ -7,29 +7,30 @@
 #include <utility>
 #include <vector>
 
+#include "kinematics/piper_kinematics.hpp"
 #include "robotd/driver/json_reader.hpp"
+#include "robotd/kinematics/arm_model.hpp"
 
 namespace robotd::piper {
 namespace {
 
 struct SdkLimit {
-  double min_rad;
-  double max_rad;
   double effort_max_nm;
   double mit_torque_scale;
   double effort_nm_per_a;
 };
 
-// piper_sdk's joint limits (spec §8.1). MIT torque: the arm executes 4× the wire value on J1–J3
-// (SDK Q&A, maintainer on FW 1.5-8), so ±8 on the wire is ±32 N·m there. Effort: the SDK's
-// current factors (1.18125 J1–J3, 0.95844 J4–J6 N·m/A) with the same 4× on J1–J3.
+// piper_sdk's effort limits (spec §8.1; its joint angle limits are the arm model's). MIT torque:
+// the arm executes 4× the wire value on J1–J3 (SDK Q&A, maintainer on FW 1.5-8), so ±8 on the
+// wire is ±32 N·m there. Effort: the SDK's current factors (1.18125 J1–J3, 0.95844 J4–J6 N·m/A)
+// with the same 4× on J1–J3.
 constexpr std::array<SdkLimit, kArmJoints> kSdkLimits{{
-    {-2.6179, 2.6179, 32.0, 0.25, 4.725},
-    {0.0, 3.14, 32.0, 0.25, 4.725},
-    {-2.967, 0.0, 32.0, 0.25, 4.725},
-    {-1.745, 1.745, 8.0, 1.0, 0.95844},
-    {-1.22, 1.22, 8.0, 1.0, 0.95844},
-    {-2.09439, 2.09439, 8.0, 1.0, 0.95844},
+    {32.0, 0.25, 4.725},
+    {32.0, 0.25, 4.725},
+    {32.0, 0.25, 4.725},
+    {8.0, 1.0, 0.95844},
+    {8.0, 1.0, 0.95844},
+    {8.0, 1.0, 0.95844},
 }};
 
 constexpr double kArmMaxSpeedRadS = 3.0;  // 0x474's documented range
@@ -43,10 +44,12 @@ std::string format_number(double value) {
 
 PiperJointParams sdk_joint(std::size_t index) {
   const SdkLimit& sdk = kSdkLimits[index];
+  // Both DH variants share the SDK's joint limits.
+  const kinematics::ArmModel& arm = *kinematics::find_arm_model(arm_model_name(DhVariant::kOffset));
   PiperJointParams joint;
   joint.name = "joint" + std::to_string(index + 1);
-  joint.limits = driver::JointLimits{.position_min_rad = sdk.min_rad,
-                                     .position_max_rad = sdk.max_rad,
+  joint.limits = driver::JointLimits{.position_min_rad = arm.min_rad[index],
+                                     .position_max_rad = arm.max_rad[index],
                                      .velocity_max_rad_s = kArmMaxSpeedRadS,
                                      .acceleration_max_rad_s2 = kArmMaxAccRadS2,
                                      .effort_max_nm = sdk.effort_max_nm,

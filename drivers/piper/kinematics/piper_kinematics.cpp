@@ -6,94 +6,50 @@
 #include <numbers>
 #include <optional>
 
-#include "robotd/kinematics/serial_chain.hpp"
+#include "robotd/kinematics/arm_model.hpp"
+#include "robotd/kinematics/rotation.hpp"
 
 namespace robotd::piper {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kMetresPerMm = 1e-3;
 
 constexpr double radians(double degrees) { return degrees * kPi / 180.0; }
 
-/// Row i of the modified (Craig) DH table: link i = RotX(α)·TransX(a)·RotZ(θ + q)·TransZ(d).
-struct DhRow {
-  double alpha_rad;
-  double a_m;
-  double d_m;
-};
+using Joints = std::array<double, kArmJoints>;
 
-constexpr std::array<DhRow, kArmJoints> kDh{{
-    {.alpha_rad = 0.0, .a_m = 0.0, .d_m = 123.0 * kMetresPerMm},
-    {.alpha_rad = -kPi / 2, .a_m = 0.0, .d_m = 0.0},
-    {.alpha_rad = 0.0, .a_m = 285.03 * kMetresPerMm, .d_m = 0.0},
-    {.alpha_rad = kPi / 2, .a_m = -21.98 * kMetresPerMm, .d_m = 250.75 * kMetresPerMm},
-    {.alpha_rad = -kPi / 2, .a_m = 0.0, .d_m = 0.0},
-    {.alpha_rad = kPi / 2, .a_m = 0.0, .d_m = 91.0 * kMetresPerMm},
-}};
-
-// θ offsets: the two variants move 2° between J2 and J3 (their sum stays −275°).
-constexpr std::array<double, kArmJoints> kOffsetTheta{0, radians(-172.22), radians(-102.78), 0, 0, 0};
-constexpr std::array<double, kArmJoints> kPlainTheta{0, radians(-174.22), radians(-100.78), 0, 0, 0};
-
-using kinematics::ChainFrames;
-using kinematics::Twist;
-
-Eigen::Isometry3d link_transform(const DhRow& row, double theta_rad) {
-  const double ca = std::cos(row.alpha_rad);
-  const double sa = std::sin(row.alpha_rad);
-  const double ct = std::cos(theta_rad);
-  const double st = std::sin(theta_rad);
-  Eigen::Isometry3d link = Eigen::Isometry3d::Identity();
-  link.linear() << ct, -st, 0.0, st * ca, ct * ca, -sa, st * sa, ct * sa, ca;
-  link.translation() << row.a_m, -sa * row.d_m, ca * row.d_m;
-  return link;
+const kinematics::ArmModel& arm_model(DhVariant variant) {
+  static const kinematics::ArmModel& offset = *kinematics::find_arm_model(arm_model_name(DhVariant::kOffset));
+  static const kinematics::ArmModel& plain = *kinematics::find_arm_model(arm_model_name(DhVariant::kPlain));
+  return variant == DhVariant::kOffset ? offset : plain;
 }
 
-/// Joint i turns about z of frame i (the modified-DH frame after link i); the tip is frame 6.
-ChainFrames joint_frames(const std::array<double, kArmJoints>& q_rad, DhVariant variant) {
-  const auto& theta = variant == DhVariant::kOffset ? kOffsetTheta : kPlainTheta;
-  ChainFrames frames;
-  Eigen::Isometry3d base_to_link = Eigen::Isometry3d::Identity();
-  for (std::size_t i = 0; i < kDh.size(); ++i) {
-    base_to_link = base_to_link * link_transform(kDh[i], q_rad[i] + theta[i]);
-    frames[i] = base_to_link;
-  }
-  frames[kArmJoints] = base_to_link;  // the flange is joint 6's frame
-  return frames;
-}
-
-Eigen::Quaterniond rotation_of(const CartesianPose& pose) {
-  return Eigen::AngleAxisd(pose.rz_rad, Eigen::Vector3d::UnitZ()) *
-         Eigen::AngleAxisd(pose.ry_rad, Eigen::Vector3d::UnitY()) *
-         Eigen::AngleAxisd(pose.rx_rad, Eigen::Vector3d::UnitX());
-}
-
-bool within_tolerance(const Twist& error) {
-  constexpr double kPositionToleranceM = 1e-4;
-  constexpr double kOrientationToleranceRad = 1e-3;
-  return error.head<3>().norm() < kPositionToleranceM && error.tail<3>().norm() < kOrientationToleranceRad;
+kinematics::ArmJoints arm_joints(const Joints& q) {
+  kinematics::ArmJoints joints{};
+  std::copy(q.begin(), q.end(), joints.begin());
+  return joints;
 }
 
 struct Limits {
-  std::array<double, kArmJoints> min_rad;
-  std::array<double, kArmJoints> max_rad;
+  Joints min_rad;
+  Joints max_rad;
 };
 
-IkResult solve(const Eigen::Isometry3d& goal, const std::array<double, kArmJoints>& seed_rad, DhVariant variant,
-               const Limits& limits) {
-  const kinematics::DlsResult solved = kinematics::solve_dls(
-      goal, seed_rad, limits.min_rad, limits.max_rad,
-      [variant](const kinematics::JointArray& q) { return joint_frames(q, variant); }, kinematics::DlsOptions{});
-  return IkResult{.converged = within_tolerance(solved.error),
-                  .q_rad = solved.q_rad,
-                  .position_error_m = solved.error.head<3>().norm(),
-                  .orientation_error_rad = solved.error.tail<3>().norm(),
+IkResult solve(const Eigen::Isometry3d& goal, const Joints& seed_rad, DhVariant variant, const Limits& limits) {
+  // Stops as soon as within the tolerance (0.1 mm, 1e-3 rad) or stuck after 200 refused steps.
+  constexpr kinematics::IkOptions kOptions{.max_refusals = 200, .stop_position_m = 1e-4, .stop_orientation_rad = 1e-3};
+  const kinematics::IkSolution solved = kinematics::inverse_kinematics(
+      arm_model(variant), goal, arm_joints(seed_rad), arm_joints(limits.min_rad), arm_joints(limits.max_rad), kOptions);
+  IkResult result{.converged = solved.converged,
+                  .position_error_m = solved.position_error_m,
+                  .orientation_error_rad = solved.orientation_error_rad,
                   .iterations = solved.iterations};
+  std::copy_n(solved.q_rad.begin(), kArmJoints, result.q_rad.begin());
+  return result;
 }
 
 /// The largest single joint motion between two configurations: what a joint-space move takes longest over.
-double joint_distance(const std::array<double, kArmJoints>& a, const std::array<double, kArmJoints>& b) {
+double joint_distance(const Joints& a, const Joints& b) {
   double largest = 0;
   for (std::size_t i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
   return largest;
@@ -101,8 +57,8 @@ double joint_distance(const std::array<double, kArmJoints>& a, const std::array<
 
 /// From `from` to `to` in steps of at most 5 mm and 3°, each search seeded by the last solution:
 /// the solution that continues the seed's branch.
-IkResult walk(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to,
-              const std::array<double, kArmJoints>& seed_rad, DhVariant variant, const Limits& limits) {
+IkResult walk(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to, const Joints& seed_rad, DhVariant variant,
+              const Limits& limits) {
   constexpr double kStepM = 5e-3;
   constexpr double kStepRad = radians(3.0);
   const Eigen::Quaterniond from_rotation(from.rotation());
@@ -125,9 +81,8 @@ IkResult walk(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to,
 
 /// The other wrist solution's neighbourhood: J5 mirrored, J4 and J6 half a turn round; nullopt
 /// when J4 or J6 would leave its limits.
-std::optional<std::array<double, kArmJoints>> wrist_flipped(const std::array<double, kArmJoints>& q_rad,
-                                                            const Limits& limits) {
-  std::array<double, kArmJoints> flipped = q_rad;
+std::optional<Joints> wrist_flipped(const Joints& q_rad, const Limits& limits) {
+  Joints flipped = q_rad;
   flipped[4] = -q_rad[4];
   for (const std::size_t wrist : {std::size_t{3}, std::size_t{5}}) {
     flipped[wrist] = q_rad[wrist] + (q_rad[wrist] > 0 ? -kPi : kPi);
@@ -138,19 +93,22 @@ std::optional<std::array<double, kArmJoints>> wrist_flipped(const std::array<dou
 
 }  // namespace
 
-Eigen::Isometry3d flange_transform(const std::array<double, kArmJoints>& q_rad, DhVariant variant) noexcept {
-  return joint_frames(q_rad, variant).back();
+std::string_view arm_model_name(DhVariant variant) noexcept {
+  return variant == DhVariant::kOffset ? "piper" : "piper_plain_dh";
 }
 
-std::array<CartesianPose, kArmJoints> link_poses(const std::array<double, kArmJoints>& q_rad,
-                                                 DhVariant variant) noexcept {
-  const ChainFrames frames = joint_frames(q_rad, variant);
+Eigen::Isometry3d flange_transform(const Joints& q_rad, DhVariant variant) noexcept {
+  return kinematics::tool_pose(arm_model(variant), arm_joints(q_rad));
+}
+
+std::array<CartesianPose, kArmJoints> link_poses(const Joints& q_rad, DhVariant variant) noexcept {
+  const auto frames = kinematics::link_frames(arm_model(variant), arm_joints(q_rad));
   std::array<CartesianPose, kArmJoints> poses;
   for (std::size_t i = 0; i < poses.size(); ++i) poses[i] = pose_of(frames[i]);
   return poses;
 }
 
-CartesianPose forward_kinematics(const std::array<double, kArmJoints>& q_rad, DhVariant variant) noexcept {
+CartesianPose forward_kinematics(const Joints& q_rad, DhVariant variant) noexcept {
   return pose_of(flange_transform(q_rad, variant));
 }
 
@@ -175,20 +133,17 @@ CartesianPose pose_of(const Eigen::Isometry3d& flange) noexcept {
 }
 
 Eigen::Isometry3d transform_of(const CartesianPose& pose) noexcept {
-  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
-  transform.linear() = rotation_of(pose).toRotationMatrix();
-  transform.translation() << pose.x_m, pose.y_m, pose.z_m;
-  return transform;
+  return kinematics::transform_of(
+      kinematics::EulerConvention::kFixedXyz,
+      {.position_m = {pose.x_m, pose.y_m, pose.z_m}, .angles_rad = {pose.rx_rad, pose.ry_rad, pose.rz_rad}});
 }
 
 std::array<double, 4> quaternion_xyzw(const CartesianPose& pose) noexcept {
-  const Eigen::Quaterniond rotation = rotation_of(pose);
-  return {rotation.x(), rotation.y(), rotation.z(), rotation.w()};
+  return kinematics::quaternion_xyzw_from_rpy({pose.rx_rad, pose.ry_rad, pose.rz_rad});
 }
 
-IkResult inverse_kinematics(const CartesianPose& target, const std::array<double, kArmJoints>& seed_rad,
-                            DhVariant variant, const std::array<double, kArmJoints>& min_rad,
-                            const std::array<double, kArmJoints>& max_rad) {
+IkResult inverse_kinematics(const CartesianPose& target, const Joints& seed_rad, DhVariant variant,
+                            const Joints& min_rad, const Joints& max_rad) {
   const Limits limits{.min_rad = min_rad, .max_rad = max_rad};
   // Near the wrist singularity (J5 ≈ 0) a search from the seed alone can land on a distant
   // solution (a 20 mm move swinging J1 by 36°). Also walk there from the seed's pose in small
@@ -208,7 +163,7 @@ IkResult inverse_kinematics(const CartesianPose& target, const std::array<double
     // matters, and the search may have split it far from the seed. Give J4 back its seed angle.
     const IkResult found = best;
     for (const double sense : {1.0, -1.0}) {
-      std::array<double, kArmJoints> realigned = found.q_rad;
+      Joints realigned = found.q_rad;
       realigned[3] = seed_rad[3];
       realigned[5] = found.q_rad[5] + sense * (found.q_rad[3] - seed_rad[3]);
       consider(solve(transform_of(target), realigned, variant, limits));

@@ -1,10 +1,13 @@
-// PiPER kinematics to the J6 flange (piper_can.md §9): the SDK's modified-DH model and its
-// roll/pitch/yaw extraction, and a damped-least-squares inverse. Lengths in m, angles in rad.
+// PiPER kinematics to the J6 flange (piper_can.md §9) on the shared arm models "piper" and
+// "piper_plain_dh" (robotd/kinematics/arm_model.hpp: the SDK's modified-DH table), in the
+// driver's types: the SDK's roll/pitch/yaw extraction, and the inverse kinematics's search
+// around the wrist singularity. Lengths in m, angles in rad.
 // Everything but inverse_kinematics is allocation-free (fixed-size Eigen) for real-time use.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include <Eigen/Geometry>
 
@@ -17,6 +20,9 @@ enum class DhVariant : std::uint8_t {
   kOffset,  // dh_is_offset = 1, firmware ≥ S-V1.6-3 (default): θ2 −172.22°, θ3 −102.78°
   kPlain,   // dh_is_offset = 0, older firmware: θ2 −174.22°, θ3 −100.78°
 };
+
+/// The shared arm model of the variant: "piper" (kOffset) or "piper_plain_dh" (kPlain).
+std::string_view arm_model_name(DhVariant variant) noexcept;
 
 /// The flange in the base frame.
 Eigen::Isometry3d flange_transform(const std::array<double, kArmJoints>& q_rad, DhVariant variant) noexcept;

@@ -255,10 +255,16 @@ struct ArmModel {
   std::size_t dof;
   JointValues min_rad;
   JointValues max_rad;
+  /// Its geometry (robotd::kinematics::find_arm_model), standard and six-axis force ("-6F")
+  /// versions (a longer flange); "" for ECO65, whose published DH table is inconsistent.
+  std::string_view kinematic_model;
+  std::string_view force_kinematic_model;
 };
 /// The model a Product_version names ("RM65-B", "RM75-6F", "ECO65-B", "GEN72-B" …; the model
 /// part before '-'); nullopt for a model not in §8.
 std::optional<ArmModel> find_model(std::string_view product_version);
+/// The geometry of a Product_version ("RM65-B" → "rm65", "RM65-6F" → "rm65_6f"); "" when none.
+std::string_view kinematic_model_of(std::string_view product_version);
 std::span<const ArmModel> known_models();
 
 /// Pass-through rule (§3.3): a joint may move at most 10° per frame and 180 °/s.

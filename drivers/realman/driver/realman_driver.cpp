@@ -29,6 +29,9 @@ Result<void> RealmanDriver::configure(const nlohmann::json& params) {
 driver::DeviceDescription RealmanDriver::describe() const {
   driver::DeviceDescription description;
   description.model = "RealMan " + std::string(params_.model.name);
+  // The configured model's standard flange: a force ("-6F") version's longer one is known only
+  // once the controller names itself.
+  description.kinematic_model = params_.model.kinematic_model;
   description.native_rate_hz = params_.command_rate_hz;
   for (std::size_t j = 0; j < params_.model.dof; ++j) {
     description.joints.push_back(driver::JointDescription{.name = joint_name(j), .limits = params_.limits[j]});

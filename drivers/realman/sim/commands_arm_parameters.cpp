@@ -50,7 +50,7 @@ nlohmann::json Controller::get_DH_data(const CommandRequest& /*request*/) {
   nlohmann::json reply = {{"command", "get_DH_data"}};
   const auto& kinematics = arm_.kinematics();
   for (std::size_t j = 0; j < arm_.dof(); ++j) {
-    const DhRow row = kinematics ? kinematics->rows()[j] : DhRow{};
+    const DhRow row = kinematics ? kinematics->row(j) : DhRow{};
     reply["joint_" + std::to_string(j + 1)] = {millidegrees_from_rad(row.alpha_rad), micrometres_from_m(row.a_m),
                                                micrometres_from_m(row.d_m), millidegrees_from_rad(row.offset_rad)};
   }

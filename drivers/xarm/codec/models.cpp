@@ -18,6 +18,19 @@ using Degrees = std::array<double, kMaxDof>;
 constexpr double kXarmTcpSpeed = 1.0;   // m/s
 constexpr double kLite6TcpSpeed = 0.5;  // m/s
 
+constexpr int kLite6Type = 9;
+constexpr int kUf850Type = 12;
+
+/// UFACTORY publishes one D-H table per family: xArm 5, xArm 6 (every 6-joint type but Lite 6 and
+/// 850), xArm 7, Lite 6, UFACTORY 850.
+constexpr std::string_view kinematic_model_of(std::size_t dof, int type_code) {
+  if (dof == 5) return "xarm5";
+  if (dof == 7) return "xarm7";
+  if (type_code == kLite6Type) return "lite6";
+  if (type_code == kUf850Type) return "uf850";
+  return "xarm6";
+}
+
 constexpr ArmModel model(std::string_view name, std::string_view display, std::size_t dof, int type_code,
                          const Degrees& min_deg, const Degrees& max_deg, double max_tcp_speed_m_s = kXarmTcpSpeed) {
   ArmModel arm{.name = name,
@@ -26,7 +39,8 @@ constexpr ArmModel model(std::string_view name, std::string_view display, std::s
                .type_code = type_code,
                .min_rad = {},
                .max_rad = {},
-               .max_tcp_speed_m_s = max_tcp_speed_m_s};
+               .max_tcp_speed_m_s = max_tcp_speed_m_s,
+               .kinematic_model = kinematic_model_of(dof, type_code)};
   for (std::size_t j = 0; j < dof; ++j) {
     arm.min_rad[j] = min_deg[j] * std::numbers::pi / 180.0;
     arm.max_rad[j] = max_deg[j] * std::numbers::pi / 180.0;

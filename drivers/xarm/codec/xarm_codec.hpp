@@ -608,6 +608,9 @@ struct ArmModel {
   JointValues min_rad{};
   JointValues max_rad{};
   double max_tcp_speed_m_s = 1.0;  // Lite 6: 0.5
+  /// Its geometry (robotd::kinematics::find_arm_model): "xarm5", "xarm6" (every 6-joint type but
+  /// Lite 6 and 850), "xarm7", "lite6", "uf850".
+  std::string_view kinematic_model;
 };
 /// By robotd's name (case-insensitive); nullopt for a name §7 does not list.
 std::optional<ArmModel> find_model(std::string_view name);

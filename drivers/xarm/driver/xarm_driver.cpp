@@ -30,6 +30,7 @@ Result<void> XarmDriver::configure(const nlohmann::json& params) {
 driver::DeviceDescription XarmDriver::describe() const {
   driver::DeviceDescription description;
   description.model = "UFACTORY " + std::string(params_.model.display);
+  description.kinematic_model = params_.model.kinematic_model;
   description.native_rate_hz = params_.servo_rate_hz;
   for (std::size_t j = 0; j < params_.model.dof; ++j) {
     description.joints.push_back(driver::JointDescription{.name = joint_name(j), .limits = params_.limits[j]});

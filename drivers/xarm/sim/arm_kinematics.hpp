@@ -1,41 +1,33 @@
-// The arms' geometry from UFACTORY's published standard D-H tables: forward kinematics for every
-// model, inverse kinematics (robotd::kinematics::solve_dls) for the 6- and 7-joint ones (on a
-// 7-joint arm joint 3 is held where it is and the other six are solved). Poses are the TCP (the
-// flange and the TCP offset) in the base frame; roll, pitch, yaw fixed axes X-Y-Z.
+// The arms' geometry from the shared arm models (robotd/kinematics/arm_model.hpp: UFACTORY's
+// standard D-H tables): forward kinematics for every model, inverse kinematics for the 6- and
+// 7-joint ones (on a 7-joint arm joint 3 is held where it is and the other six are solved).
+// Poses are the TCP (the flange and the TCP offset) in the base frame; roll, pitch, yaw fixed
+// axes X-Y-Z.
 #pragma once
 
 #include <cstddef>
 #include <optional>
-#include <vector>
 
 #include <Eigen/Geometry>
 
 #include "codec/xarm_codec.hpp"
+#include "robotd/kinematics/arm_model.hpp"
 
 namespace robotd::xarm::sim {
 
-/// One row of a standard D-H table: frame i from frame i−1 is Rz(θ + offset) · Tz(d) · Tx(a) · Rx(α).
-struct DhRow {
-  double d_m;
-  double a_m;
-  double alpha_rad;
-  double offset_rad;
-};
-
 class ArmKinematics {
  public:
-  /// The table of the model's family: xArm 5, xArm 6 (every 6-joint type but Lite 6 and 850),
-  /// xArm 7, Lite 6, UFACTORY 850.
+  /// The geometry of the model's family (ArmModel::kinematic_model).
   static ArmKinematics for_model(const ArmModel& model);
 
-  std::size_t dof() const { return rows_.size(); }
+  std::size_t dof() const { return geometry_->dof; }
   /// The flange for the first dof() entries of `joints_rad`.
   Eigen::Isometry3d flange(const JointValues& joints_rad) const;
   /// The flange carrying `tcp_offset`.
   Eigen::Isometry3d tcp(const JointValues& joints_rad, const Eigen::Isometry3d& tcp_offset) const;
 
   /// Whether solve() works: 6 or 7 joints (a 5-joint arm cannot reach an arbitrary pose).
-  bool solves_poses() const { return rows_.size() >= 6; }
+  bool solves_poses() const { return dof() >= 6; }
   /// Joints within the model's limits that put the TCP on `goal` (to 10 µm and 1 mrad), searched
   /// from `seed` first; a 7-joint arm keeps joint 3 at the seed's value. nullopt when no search
   /// reaches it.
@@ -43,9 +35,9 @@ class ArmKinematics {
                                    const JointValues& seed) const;
 
  private:
-  ArmKinematics(std::vector<DhRow> rows, const ArmModel& model) : rows_(std::move(rows)), model_(model) {}
+  ArmKinematics(const kinematics::ArmModel& geometry, const ArmModel& model) : geometry_(&geometry), model_(model) {}
 
-  std::vector<DhRow> rows_;
+  const kinematics::ArmModel* geometry_;
   ArmModel model_;
 };
 

@@ -74,6 +74,12 @@ TEST(Parol6Params, BadParamsAreNamed) {
   }
 }
 
+TEST(Parol6Params, DescribeNamesTheArmModel) {
+  Parol6Driver driver;
+  ASSERT_TRUE(driver.configure(driver_params("/tmp/robotd-parol6-nothing-here")));
+  EXPECT_EQ(driver.describe().kinematic_model, "parol6");
+}
+
 TEST_F(Parol6DriverTest, ConnectFailsClearlyWithoutABoard) {
   Parol6Driver lonely;
   ASSERT_TRUE(lonely.configure(driver_params("/tmp/robotd-parol6-nothing-here")));

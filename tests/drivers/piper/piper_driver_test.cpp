@@ -62,7 +62,14 @@ TEST_F(PiperDriverTest, ConnectChecksFeedbackAndReadsTheFirmware) {
   EXPECT_NEAR(description.joints[0].limits.position_max_rad, 2.6179, 1e-9);
   EXPECT_NEAR(description.joints[2].limits.position_min_rad, -2.967, 1e-9);
   EXPECT_TRUE(description.has_end_pose);
+  EXPECT_EQ(description.kinematic_model, "piper");
   driver_.disconnect();
+}
+
+TEST_F(PiperDriverTest, TheKinematicModelFollowsTheDhVariant) {
+  PiperDriver plain;
+  ASSERT_TRUE(plain.configure(driver_params(sim_.bus_path(), {{"dh", "plain"}})));
+  EXPECT_EQ(plain.describe().kinematic_model, "piper_plain_dh");
 }
 
 // The ops that act on the joints robotd drives need free motors: robotd refuses them while a

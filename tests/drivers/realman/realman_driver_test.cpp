@@ -93,14 +93,19 @@ TEST(RealmanParams, BadParamsAreNamedWithWhatIsExpected) {
 TEST(RealmanParams, DescribeTellsTheModelsJointsAndLimits) {
   RealmanDriver driver;
   ASSERT_TRUE(driver.configure({{"model", "GEN72"}, {"command_rate_hz", 250}}));
-  const driver::DeviceDescription description = driver.describe();
+  driver::DeviceDescription description = driver.describe();
   EXPECT_EQ(description.model, "RealMan GEN72");
+  EXPECT_EQ(description.kinematic_model, "gen72");
   EXPECT_DOUBLE_EQ(description.native_rate_hz, 250);
   ASSERT_EQ(description.joints.size(), 7U);
   EXPECT_NEAR(description.joints[3].limits.position_max_rad, 55.0 * M_PI / 180, 1e-6);  // J4 −170…+55°
   EXPECT_FALSE(description.supports_torque);
   EXPECT_FALSE(description.supports_damping);
   EXPECT_TRUE(description.has_end_pose);
+
+  ASSERT_TRUE(driver.configure({{"model", "ECO65"}}));
+  description = driver.describe();
+  EXPECT_EQ(description.kinematic_model, "") << "ECO65's published DH table is inconsistent";
 }
 
 // The ops that act on the arm robotd drives need free motors: power and enable, planned motion,

@@ -131,6 +131,7 @@ TEST(XarmParams, DescribeTellsTheModelsJointsAndLimits) {
   ASSERT_TRUE(driver.configure({{"model", "xarm7"}, {"servo_rate_hz", 200}}));
   driver::DeviceDescription description = driver.describe();
   EXPECT_EQ(description.model, "UFACTORY xArm 7");
+  EXPECT_EQ(description.kinematic_model, "xarm7");
   EXPECT_DOUBLE_EQ(description.native_rate_hz, 200);
   ASSERT_EQ(description.joints.size(), 7U);
   EXPECT_NEAR(description.joints[1].limits.position_min_rad, -118.0 * M_PI / 180, 1e-6);  // J2 −118…120°
@@ -142,6 +143,7 @@ TEST(XarmParams, DescribeTellsTheModelsJointsAndLimits) {
   ASSERT_TRUE(driver.configure({{"model", "lite6"}}));
   description = driver.describe();
   EXPECT_EQ(description.model, "UFACTORY Lite 6");
+  EXPECT_EQ(description.kinematic_model, "lite6");
   ASSERT_EQ(description.joints.size(), 6U);
   EXPECT_NEAR(description.joints[2].limits.position_max_rad, 300.0 * M_PI / 180, 1e-6);  // J3 −3.5…300°
   EXPECT_DOUBLE_EQ(description.native_rate_hz, 250);

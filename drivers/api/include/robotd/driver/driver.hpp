@@ -65,7 +65,8 @@ inline constexpr bool kNeedsFreeMotors = true;
 
 struct DeviceDescription {
   std::string model;
-  // The arm model the client-side motion layer plans with (robotd::kinematics::find_arm_model), "" when none.
+  // The arm model the client-side motion layer plans with (robotd::kinematics::find_arm_model:
+  // "parol6", "piper", "xarm6" …); "" when none.
   std::string kinematic_model;
   double native_rate_hz = 1000;
   std::vector<JointDescription> joints;

@@ -3,7 +3,7 @@
 // for any number of joints up to 7: the tool pose, the geometric Jacobian, a singularity measure
 // and a damped-least-squares inverse with joint limits. The one home of the arms' geometry: the
 // drivers, their simulators and the client-side motion layer all take it from here.
-// Lengths in m, angles in rad. Sources of the tables: docs/drivers/<vendor>.md.
+// Lengths in m, angles in rad. Each table names its public source in src/arm_models.cpp.
 #pragma once
 
 #include <array>
