@@ -27,6 +27,8 @@ using kinematics::ArmModel;
 // from them by rounding only).
 constexpr double kNullTravelM = 1e-9;
 constexpr double kNullTurnRad = 1e-9;
+// How much closer to a singularity than where it started a line may come (below the threshold).
+constexpr double kApproachFraction = 0.5;
 
 /// The tool's line: position linear, orientation slerped, both at the same fraction s.
 class ToolLine {
@@ -160,6 +162,7 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
   positions.reserve(count + 1);
   ArmJoints previous = to_arm(from);
   double previous_s = 0;
+  const double start_margin = kinematics::smallest_singular_value(model, previous);
   for (std::size_t k = 1; k <= count; ++k) {
     const double s = profile.position(static_cast<double>(k) * dt_s);
     const Eigen::Isometry3d pose = line.at(s);
@@ -167,8 +170,12 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
     if (!solution.converged) {
       return fail("no joint solution " + line.where(s) + ": " + unreachable(model, pose, previous, limits, solution));
     }
+    // A line may start at a singularity (a wrist straightened, as after the commander's standard
+    // MoveJoint(…, 0, 180)) and leave it; it stops where it comes closer to one than the threshold
+    // and than half its start's margin. A line that must turn joints through one fast is stopped by
+    // the joint speed check below.
     const double margin = kinematics::smallest_singular_value(model, solution.q_rad);
-    if (margin < options.min_singular_value) {
+    if (margin < options.min_singular_value && margin < kApproachFraction * start_margin) {
       return fail("stops before a singularity " + line.where(s) + " (the Jacobian's smallest singular value there is " +
                   number(margin) + ", below " + number(options.min_singular_value) + "); it is clear up to " +
                   line.where(previous_s));

@@ -8,7 +8,8 @@
 //     cruise keeps to a tool speed and turning speed. IK at every sample, seeded with the one
 //     before, so that the arm stays on one branch. The line stops, with an error naming how far
 //     along it, before a sample that has no solution within the joint limits, one closer to a
-//     singularity than a threshold, or one that would turn a joint faster than its maximum.
+//     singularity than a threshold (and than half the margin it started with: a line may leave a
+//     singularity it starts at), or one that would turn a joint faster than its maximum.
 //   - plan_tool_relative_move (MoveCartRelTRF): the line to the start pose moved by `delta` in
 //     the tool's own frame (start · delta).
 // A pose is the tool's (ArmModel::tool) in the base frame, lengths in m.
