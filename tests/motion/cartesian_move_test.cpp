@@ -98,13 +98,13 @@ TEST(PoseMove, SolvesTheGoalThenMovesByTheJointRules) {
   const Result<Trajectory> planned =
       plan_pose_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error().message;
-  EXPECT_EQ(planned->shape, Shape::kPolynomial);  // t alone: "poly"
-  EXPECT_EQ(planned->positions.size(), 201U);
-  EXPECT_EQ(planned->positions.front(), from);
-  const Eigen::Isometry3d reached = pose_at(parol6, planned->positions.back());
+  EXPECT_EQ(planned.value().shape, Shape::kPolynomial);  // t alone: "poly"
+  EXPECT_EQ(planned.value().positions.size(), 201U);
+  EXPECT_EQ(planned.value().positions.front(), from);
+  const Eigen::Isometry3d reached = pose_at(parol6, planned.value().positions.back());
   EXPECT_LT((reached.translation() - goal.translation()).norm(), 1e-4);
   EXPECT_LT(angle_between(reached, goal), 1e-3);
-  EXPECT_EQ(planned->how.rfind("IK, then quintic polynomial", 0), 0U) << planned->how;
+  EXPECT_EQ(planned.value().how.rfind("IK, then quintic polynomial", 0), 0U) << planned.value().how;
 }
 
 TEST(PoseMove, VAndAMakeTheLeadingJointTrapezoid) {
@@ -114,10 +114,10 @@ TEST(PoseMove, VAndAMakeTheLeadingJointTrapezoid) {
       plan_pose_move(parol6, parol6_working(), goal, {.speed_percent = 30.0, .acceleration_percent = 50.0},
                      limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error().message;
-  EXPECT_EQ(planned->shape, Shape::kTrapezoid);
-  EXPECT_EQ(planned->how.rfind("IK, then trapezoid, leading joint", 0), 0U) << planned->how;
+  EXPECT_EQ(planned.value().shape, Shape::kTrapezoid);
+  EXPECT_EQ(planned.value().how.rfind("IK, then trapezoid, leading joint", 0), 0U) << planned.value().how;
   double fastest = 0;  // the leading joint's share of its 1.5 rad/s
-  for (const Joints& velocity : planned->velocities) {
+  for (const Joints& velocity : planned.value().velocities) {
     for (const double v : velocity) fastest = std::max(fastest, std::abs(v) / 1.5);
   }
   EXPECT_LE(fastest, 0.3 + 1e-12);
@@ -130,7 +130,9 @@ TEST(PoseMove, AnUnreachablePoseIsAClearError) {
   far.translation() = Eigen::Vector3d(1.5, 0.0, 0.3);  // the PAROL6 reaches about 0.45 m
   const Result<Trajectory> planned = plan_pose_move(parol6, parol6_working(), far, {}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
-  EXPECT_EQ(planned.error().message.rfind("pose move: no joint solution within the joint limits reaches the goal pose", 0), 0U)
+  EXPECT_EQ(
+      planned.error().message.rfind("pose move: no joint solution within the joint limits reaches the goal pose", 0),
+      0U)
       << planned.error().message;
 }
 
@@ -143,12 +145,12 @@ TEST(LineMove, EverySampleIsOnTheLineWhereTheProfilePutsIt) {
     const Result<Trajectory> planned =
         plan_line_move(parol6, from, goal, {.duration_s = 2.0, .shape = shape}, limits_of(parol6), kLineDt);
     ASSERT_TRUE(planned.ok()) << planned.error().message;
-    EXPECT_EQ(planned->shape, shape);
-    EXPECT_EQ(planned->positions.size(), 201U);
-    EXPECT_EQ(planned->positions.front(), from);
+    EXPECT_EQ(planned.value().shape, shape);
+    EXPECT_EQ(planned.value().positions.size(), 201U);
+    EXPECT_EQ(planned.value().positions.front(), from);
     expect_on_the_line(parol6, planned.value(), start, goal);
-    EXPECT_EQ(planned->velocities.front(), Joints(6, 0.0));
-    EXPECT_EQ(planned->velocities.back(), Joints(6, 0.0));
+    EXPECT_EQ(planned.value().velocities.front(), Joints(6, 0.0));
+    EXPECT_EQ(planned.value().velocities.back(), Joints(6, 0.0));
   }
 }
 
@@ -159,13 +161,13 @@ TEST(LineMove, WithoutTTheToolCruisesAtItsSpeedOnAThirdsTrapezoid) {
   const Eigen::Isometry3d goal = moved(start, {0.0, 0.0, 0.06}, 0.0, {0, 0, 1});
   const Result<Trajectory> planned = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error().message;
-  EXPECT_EQ(planned->shape, Shape::kTrapezoid);
+  EXPECT_EQ(planned.value().shape, Shape::kTrapezoid);
   // 60 mm cruising at 50 mm/s in the middle third: 1.5 · 1.2 s.
-  EXPECT_NEAR(planned->duration_s, 1.8, 1e-9);
+  EXPECT_NEAR(planned.value().duration_s, 1.8, 1e-9);
   expect_on_the_line(parol6, planned.value(), start, goal);
-  const std::size_t middle = planned->positions.size() / 2;
-  const double speed = (pose_at(parol6, planned->positions[middle + 1]).translation() -
-                        pose_at(parol6, planned->positions[middle]).translation())
+  const std::size_t middle = planned.value().positions.size() / 2;
+  const double speed = (pose_at(parol6, planned.value().positions[middle + 1]).translation() -
+                        pose_at(parol6, planned.value().positions[middle]).translation())
                            .norm() /
                        kLineDt;
   EXPECT_NEAR(speed, kDefaultLinearSpeedMS, 1e-6);
@@ -178,29 +180,42 @@ TEST(LineMove, PlansArmsOfSevenJoints) {
   const Eigen::Isometry3d goal = moved(start, {-0.05, 0.04, -0.03}, 10 * kDegree, {0, 1, 0});
   const Result<Trajectory> planned = plan_line_move(xarm7, from, goal, {.duration_s = 2.0}, limits_of(xarm7), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error().message;
-  EXPECT_EQ(planned->positions.back().size(), 7U);
+  EXPECT_EQ(planned.value().positions.back().size(), 7U);
   expect_on_the_line(xarm7, planned.value(), start, goal);
 }
 
 TEST(LineMove, StopsBeforeASingularitySayingHowFarAlong) {
-  // The PAROL6's wrist lines J4 up with J6 at J5 = 0: a line from J5 = −30° to that pose ends on it.
+  // The PAROL6's wrist lines J4 up with J6 at J5 = 0. From J5 = 20° to the pose at J5 = −20° with
+  // J4 turned 5°, the line passes next to J5 = 0, where J4 would have to spin.
   const ArmModel& parol6 = model("parol6");
-  const Joints from = parol6_working();
-  Joints singular = from;
-  singular[4] = 0.0;
-  const Eigen::Isometry3d goal = pose_at(parol6, singular);
-  EXPECT_LT(kinematics::smallest_singular_value(parol6, arm(singular)), 1e-9);
+  const Joints from = degrees({0, -60, 150, 0, 20, 180});
+  const Eigen::Isometry3d goal = pose_at(parol6, degrees({0, -60, 150, 5, -20, 180}));
   const Result<Trajectory> planned =
-      plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kLineDt);
+      plan_line_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_FALSE(planned.ok());
-  EXPECT_NE(planned.error().message.find("line move: stops before a singularity"), std::string::npos) << planned.error().message;
-  EXPECT_NE(planned.error().message.find("% along the line ("), std::string::npos) << planned.error().message;
-  EXPECT_NE(planned.error().message.find(" mm"), std::string::npos) << planned.error().message;
-  EXPECT_NE(planned.error().message.find("it is clear up to"), std::string::npos) << planned.error().message;
-  // The singular pose itself is reachable: what stops the line is the margin.
-  const Result<Trajectory> unguarded =
-      plan_line_move(parol6, from, goal, {.duration_s = 4.0}, limits_of(parol6), kLineDt, {.min_singular_value = 0.0});
-  EXPECT_TRUE(unguarded.ok()) << unguarded.error().message;
+  const std::string& message = planned.error().message;
+  EXPECT_NE(message.find("line move: stops before a singularity: J"), std::string::npos) << message;
+  EXPECT_NE(message.find(" would turn at "), std::string::npos) << message;
+  EXPECT_NE(message.find("% along the line ("), std::string::npos) << message;
+  EXPECT_NE(message.find(" mm"), std::string::npos) << message;
+  EXPECT_NE(message.find("it is clear up to"), std::string::npos) << message;
+}
+
+TEST(LineMove, PassesThroughASingularityWhenNoJointMustSpin) {
+  // The same line without the J4 turn only needs J5 to pass zero; starting on the singularity is
+  // fine too.
+  const ArmModel& parol6 = model("parol6");
+  const Joints from = degrees({0, -60, 150, 0, 20, 180});
+  const Joints to = degrees({0, -60, 150, 0, -20, 180});
+  const Result<Trajectory> through =
+      plan_line_move(parol6, from, pose_at(parol6, to), {.duration_s = 2.0}, limits_of(parol6), kLineDt);
+  ASSERT_TRUE(through.ok()) << through.error().message;
+  for (std::size_t j = 0; j < to.size(); ++j) EXPECT_NEAR(through.value().positions.back()[j], to[j], 1e-6);
+  const Joints singular = degrees({0, -60, 150, 0, 0, 180});
+  EXPECT_LT(kinematics::smallest_singular_value(parol6, arm(singular)), 1e-9);
+  const Result<Trajectory> away =
+      plan_line_move(parol6, singular, pose_at(parol6, from), {.duration_s = 2.0}, limits_of(parol6), kLineDt);
+  EXPECT_TRUE(away.ok()) << away.error().message;
 }
 
 TEST(LineMove, KeepsToTheJointLimitsOnEverySample) {
@@ -211,7 +226,7 @@ TEST(LineMove, KeepsToTheJointLimitsOnEverySample) {
   // Where J1 must go along the line, and a limit that cuts the line half way.
   const Result<Trajectory> free = plan_line_move(parol6, from, goal, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(free.ok()) << free.error().message;
-  const double j1_goal = free->positions.back()[0];
+  const double j1_goal = free.value().positions.back()[0];
   ASSERT_GT(std::abs(j1_goal - from[0]), 5 * kDegree);
   JointLimits narrow = limits_of(parol6);
   (j1_goal > from[0] ? narrow.max_rad[0] : narrow.min_rad[0]) = (from[0] + j1_goal) / 2;
@@ -243,11 +258,12 @@ TEST(LineMove, RefusesBadArguments) {
             "line move: the start has 5 values, expected one per joint (6)");
   EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(model("xarm7")), kLineDt).error().message,
             "line move: the joint limit min_rad has 7 values, expected one per joint (6)");
-  EXPECT_EQ(plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt, {.linear_speed_m_s = 0.0}).error().message,
-            "line move: the line's tool speed and turning speed must be positive, got 0 m/s and 0.436 rad/s");
+  EXPECT_EQ(
+      plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt, {.linear_speed_m_s = 0.0}).error().message,
+      "line move: the line's tool speed and turning speed must be positive, got 0 m/s and 0.436 rad/s");
   const Result<Trajectory> there = plan_line_move(parol6, from, goal, {}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(there.ok()) << there.error().message;
-  EXPECT_EQ(there->positions.size(), 1U);
+  EXPECT_EQ(there.value().positions.size(), 1U);
 }
 
 TEST(ToolRelativeMove, APureToolXMoveGoesAlongTheToolsXAxis) {
@@ -259,13 +275,13 @@ TEST(ToolRelativeMove, APureToolXMoveGoesAlongTheToolsXAxis) {
       plan_tool_relative_move(parol6, from, delta, {.duration_s = 1.5}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error().message;
   const Eigen::Vector3d tool_x = start.linear().col(0);
-  for (const Joints& q : planned->positions) {
+  for (const Joints& q : planned.value().positions) {
     const Eigen::Isometry3d tool = pose_at(parol6, q);
     const Eigen::Vector3d moved_by = tool.translation() - start.translation();
     EXPECT_LT((moved_by - moved_by.dot(tool_x) * tool_x).norm(), 1e-6);  // nothing across the tool's x
     EXPECT_LT(angle_between(tool, start), 1e-5);                         // no turn
   }
-  const Eigen::Vector3d end = pose_at(parol6, planned->positions.back()).translation();
+  const Eigen::Vector3d end = pose_at(parol6, planned.value().positions.back()).translation();
   EXPECT_NEAR((end - start.translation()).dot(tool_x), -0.03, 1e-6);
 }
 
@@ -277,7 +293,7 @@ TEST(ToolRelativeMove, ATurnAboutTheToolsZKeepsTheToolPoint) {
   const Result<Trajectory> planned =
       plan_tool_relative_move(parol6, from, delta, {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   ASSERT_TRUE(planned.ok()) << planned.error().message;
-  const Eigen::Isometry3d end = pose_at(parol6, planned->positions.back());
+  const Eigen::Isometry3d end = pose_at(parol6, planned.value().positions.back());
   EXPECT_LT((end.translation() - start.translation()).norm(), 1e-6);
   EXPECT_LT((end.linear() - start.linear() * delta.linear()).norm(), 1e-5);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,8 +28,9 @@ using kinematics::ArmModel;
 // from them by rounding only).
 constexpr double kNullTravelM = 1e-9;
 constexpr double kNullTurnRad = 1e-9;
-// How much closer to a singularity than where it started a line may come (below the threshold).
-constexpr double kApproachFraction = 0.5;
+// A joint too fast where the Jacobian's smallest singular value has fallen below this fraction of
+// the largest it had on the line is near a singularity (the values' scale differs from arm to arm).
+constexpr double kSingularFraction = 0.35;
 
 /// The tool's line: position linear, orientation slerped, both at the same fraction s.
 class ToolLine {
@@ -51,8 +53,8 @@ class ToolLine {
 
   /// "42 % along the line (63.0 of 150.0 mm, 12.6 of 30.0°)".
   std::string where(double s) const {
-    std::string text = fixed(100 * s) + " % along the line (" + fixed(1e3 * s * length_m()) + " of " +
-                       fixed(1e3 * length_m()) + " mm";
+    std::string text =
+        fixed(100 * s) + " % along the line (" + fixed(1e3 * s * length_m()) + " of " + fixed(1e3 * length_m()) + " mm";
     if (turn_rad() > kNullTurnRad)
       text += ", " + fixed(degrees(s * turn_rad())) + " of " + fixed(degrees(turn_rad())) + "°";
     return text + ")";
@@ -85,8 +87,12 @@ std::optional<std::string> options_problem(const LineOptions& options, const Mov
 /// tells which).
 std::string unreachable(const ArmModel& model, const Eigen::Isometry3d& pose, const ArmJoints& seed,
                         const JointLimits& limits, const kinematics::IkSolution& best) {
-  const kinematics::IkSolution unlimited =
-      kinematics::inverse_kinematics(model, pose, seed, model.min_rad, model.max_rad);
+  // Without any joint limit (a full turn either way): does a limit stand in the way?
+  kinematics::ArmJoints turn_min{};
+  kinematics::ArmJoints turn_max{};
+  turn_min.fill(-2 * std::numbers::pi);
+  turn_max.fill(2 * std::numbers::pi);
+  const kinematics::IkSolution unlimited = kinematics::inverse_kinematics(model, pose, seed, turn_min, turn_max);
   if (unlimited.converged) {
     if (auto past = detail::outside_limits(detail::to_joints(unlimited.q_rad, model.dof), limits, "would need")) {
       return *past;
@@ -116,7 +122,9 @@ namespace detail {
 Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& model, const Joints& from,
                                      const Eigen::Isometry3d& goal, const MoveTiming& timing, const JointLimits& limits,
                                      double dt_s, const LineOptions& options) {
-  const auto fail = [what](const std::string& message) { return Error{ErrorCode::kInvalidArgument, std::string(what) + ": " + message}; };
+  const auto fail = [what](const std::string& message) {
+    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": " + message};
+  };
   auto problem = model_problem(model, from, limits);
   if (!problem) problem = timing_problem(timing, dt_s);
   if (!problem) problem = options_problem(options, timing);
@@ -162,7 +170,7 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
   positions.reserve(count + 1);
   ArmJoints previous = to_arm(from);
   double previous_s = 0;
-  const double start_margin = kinematics::smallest_singular_value(model, previous);
+  double widest_margin = kinematics::smallest_singular_value(model, previous);
   for (std::size_t k = 1; k <= count; ++k) {
     const double s = profile.position(static_cast<double>(k) * dt_s);
     const Eigen::Isometry3d pose = line.at(s);
@@ -170,24 +178,28 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
     if (!solution.converged) {
       return fail("no joint solution " + line.where(s) + ": " + unreachable(model, pose, previous, limits, solution));
     }
-    // A line may start at a singularity (a wrist straightened, as after the commander's standard
-    // MoveJoint(…, 0, 180)) and leave it; it stops where it comes closer to one than the threshold
-    // and than half its start's margin. A line that must turn joints through one fast is stopped by
-    // the joint speed check below.
-    const double margin = kinematics::smallest_singular_value(model, solution.q_rad);
-    if (margin < options.min_singular_value && margin < kApproachFraction * start_margin) {
-      return fail("stops before a singularity " + line.where(s) + " (the Jacobian's smallest singular value there is " +
-                  number(margin) + ", below " + number(options.min_singular_value) + "); it is clear up to " +
-                  line.where(previous_s));
-    }
+    // Near a singularity the joints a line needs speed up without bound: the line stops before
+    // the first sample that would turn a joint faster than its maximum, and says whether a
+    // singularity is why. Passing through one is fine when no joint has to spin (a wrist
+    // straightening on the way), as is starting at one (the commander's examples start their
+    // Cartesian moves from MoveJoint(90, -90, 180, 0, 0, 180), a straight wrist).
     for (std::size_t j = 0; j < model.dof; ++j) {
       const double speed = std::abs(solution.q_rad[j] - previous[j]) / dt_s;
-      if (speed > limits.max_speed_rad_s[j] * (1 + kLimitMargin)) {
-        return fail(joint_name(j) + " would turn at " + number(speed) + " rad/s (max " +
-                    number(limits.max_speed_rad_s[j]) + ") " + line.where(s) +
-                    ": near a singularity or the edge of the workspace, or too fast a move (a longer t would do)");
+      if (speed <= limits.max_speed_rad_s[j] * (1 + kLimitMargin)) continue;
+      const std::string turning = joint_name(j) + " would turn at " + number(speed) + " rad/s (max " +
+                                  number(limits.max_speed_rad_s[j]) + ") " + line.where(s);
+      const double margin = kinematics::smallest_singular_value(model, solution.q_rad);
+      if (margin < options.min_singular_value || margin < kSingularFraction * widest_margin) {
+        return fail("stops before a singularity: " + turning + ", where the Jacobian's smallest singular value is " +
+                    number(margin) + " (it was " + number(widest_margin) + " earlier on the line); it is clear up to " +
+                    line.where(previous_s));
       }
+      return fail(turning +
+                  ": near the edge of the workspace, or too fast a move (a longer t would do); it is clear "
+                  "up to " +
+                  line.where(previous_s));
     }
+    widest_margin = std::max(widest_margin, kinematics::smallest_singular_value(model, solution.q_rad));
     positions.push_back(to_joints(solution.q_rad, model.dof));
     previous = solution.q_rad;
     previous_s = s;

@@ -7,8 +7,6 @@
 namespace robotd::kinematics {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 Eigen::Matrix3d rotation_of(EulerConvention convention, const std::array<double, 3>& angles) {
   const auto [a, b, c] = angles;
   if (convention == EulerConvention::kFixedXyz) {
@@ -29,7 +27,7 @@ std::array<double, 3> fixed_xyz_angles(const Eigen::Matrix3d& r) {
             std::atan2(r(1, 0), r(0, 0))};
   }
   // a and c turn about the same axis: all of it in c.
-  return {0.0, std::copysign(kPi / 2, -r(2, 0)), std::atan2(-r(0, 1), r(1, 1))};
+  return {0.0, std::copysign(std::numbers::pi / 2, -r(2, 0)), std::atan2(-r(0, 1), r(1, 1))};
 }
 
 /// R = Rx(c)·Ry(b)·Rz(a): row 0 is (cb·ca, −cb·sa, sb), column 2 is (sb, −sc·cb, cc·cb).
@@ -42,9 +40,11 @@ std::array<double, 3> parol6_commander_angles(const Eigen::Matrix3d& r) {
     return {std::atan2(-r(0, 1), r(0, 0)), std::atan2(r(0, 2), cos_b), std::atan2(-r(1, 2), r(2, 2))};
   }
   if (r(0, 2) > 0) {
-    return {0.0, kPi / 2, std::atan2(r(2, 1), r(1, 1))};  // R = [[0, 0, 1], [s(a+c), c(a+c), 0], [−c(a+c), s(a+c), 0]]
+    return {0.0, std::numbers::pi / 2,
+            std::atan2(r(2, 1), r(1, 1))};  // R = [[0, 0, 1], [s(a+c), c(a+c), 0], [−c(a+c), s(a+c), 0]]
   }
-  return {0.0, -kPi / 2, -std::atan2(r(1, 0), r(2, 0))};  // R = [[0, 0, −1], [s(a−c), c(a−c), 0], [c(a−c), −s(a−c), 0]]
+  return {0.0, -std::numbers::pi / 2,
+          -std::atan2(r(1, 0), r(2, 0))};  // R = [[0, 0, −1], [s(a−c), c(a−c), 0], [c(a−c), −s(a−c), 0]]
 }
 
 }  // namespace

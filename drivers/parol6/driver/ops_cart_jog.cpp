@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "driver/parol6_ops.hpp"
+#include "robotd/motion/cartesian_move.hpp"
 
 namespace robotd::parol6 {
 namespace {
@@ -59,14 +60,14 @@ Result<nlohmann::json> Parol6Ops::cart_jog(const nlohmann::json& args) {
   if (auto error = arguments.finish()) return *error;
   if (auto refused = check_can_move("cart_jog", /*needs_homed=*/true)) return *refused;
   const JointVector from = measured();
-  const Pose target = pose_of(jogged(tool_transform(from), axis, *velocity * duration, frame == "tool"));
-  MoveTiming timing;
+  const Eigen::Isometry3d target = jogged(tool_transform(from), axis, *velocity * duration, frame == "tool");
+  motion::MoveTiming timing;
   timing.duration_s = duration;
-  std::string error;
-  const auto samples = plan_cartesian_move(from, target, timing, joint_min(), joint_max(), max_speed(),
-                                           kMaxLinearJogMps, 1.0 / driver_.params_.exchange_rate_hz, error);
-  if (samples.empty()) return make_error(ErrorCode::kRefused, "cart_jog: " + error);
-  return run("cart_jog", samples);
+  timing.shape = motion::Shape::kTrapezoid;
+  motion::LineOptions line;
+  line.linear_speed_m_s = kMaxLinearJogMps;
+  return run("cart_jog", motion::plan_line_move(parol6_model(), {from.begin(), from.end()}, target, timing, limits(),
+                                                period_s(), line));
 }
 
 }  // namespace robotd::parol6

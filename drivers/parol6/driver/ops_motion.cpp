@@ -7,6 +7,7 @@
 
 #include "codec/joint_units.hpp"
 #include "driver/parol6_ops.hpp"
+#include "robotd/motion/cartesian_move.hpp"
 
 namespace robotd::parol6 {
 namespace {
@@ -14,8 +15,7 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr auto kCancelTimeout = 200ms;
-constexpr auto kSessionEndWait = 300ms;          // three exchanges at the slowest exchange_rate_hz, 10 Hz
-constexpr double kDefaultLinearSpeedMps = 0.05;  // the commander's Cartesian moves run at 2–60 mm/s
+constexpr auto kSessionEndWait = 300ms;  // three exchanges at the slowest exchange_rate_hz, 10 Hz
 
 nlohmann::json pose_json(const Pose& pose) {
   return {{"x_m", pose.x_m},
@@ -25,6 +25,8 @@ nlohmann::json pose_json(const Pose& pose) {
           {"pitch_rad", pose.pitch_rad},
           {"yaw_rad", pose.yaw_rad}};
 }
+
+motion::Joints as_joints(const JointVector& q) { return {q.begin(), q.end()}; }
 
 std::optional<JointVector> joints_argument(JsonReader& reader, bool required) {
   if (required) reader.require("joints_rad", "6 joint angles in rad");
@@ -62,17 +64,18 @@ JointVector Parol6Ops::joint_max() const {
   return q;
 }
 
-JointVector Parol6Ops::max_speed() const {
-  JointVector v{};
-  for (std::size_t j = 0; j < kJoints; ++j) v[j] = driver_.params_.limits[j].velocity_max_rad_s;
-  return v;
+motion::JointLimits Parol6Ops::limits() const {
+  motion::JointLimits limits;
+  for (const auto& joint : driver_.params_.limits) {
+    limits.min_rad.push_back(joint.position_min_rad);
+    limits.max_rad.push_back(joint.position_max_rad);
+    limits.max_speed_rad_s.push_back(joint.velocity_max_rad_s);
+    limits.max_acceleration_rad_s2.push_back(joint.acceleration_max_rad_s2);
+  }
+  return limits;
 }
 
-JointVector Parol6Ops::max_acceleration() const {
-  JointVector a{};
-  for (std::size_t j = 0; j < kJoints; ++j) a[j] = driver_.params_.limits[j].acceleration_max_rad_s2;
-  return a;
-}
+double Parol6Ops::period_s() const { return 1.0 / driver_.params_.exchange_rate_hz; }
 
 std::optional<Error> Parol6Ops::check_no_session_streams(std::string_view op) const {
   // robotd runs the ops that need free motors with no session on the device and grants none
@@ -112,7 +115,7 @@ Result<nlohmann::json> Parol6Ops::run(std::string_view op, const std::vector<Joi
     return make_error(ErrorCode::kTimeout, std::string(op) + ": the device loop is not running");
   }
   // Each frame asks for the next sample with the speed that reaches it by the next frame.
-  const double period_s = 1.0 / driver_.params_.exchange_rate_hz;
+  const double period_s = this->period_s();
   std::vector<StepTarget> targets(samples.size());
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const JointVector& next = samples[std::min(k + 1, samples.size() - 1)];
@@ -125,6 +128,15 @@ Result<nlohmann::json> Parol6Ops::run(std::string_view op, const std::vector<Joi
   driver_.trajectory_.load(targets);
   driver_.trajectory_.publish();
   return nlohmann::json{{"started", op}, {"duration_s", static_cast<double>(samples.size() - 1) * period_s}};
+}
+
+Result<nlohmann::json> Parol6Ops::run(std::string_view op, const Result<motion::Trajectory>& plan) {
+  if (!plan) return make_error(ErrorCode::kRefused, std::string(op) + ": " + plan.error().message);
+  std::vector<JointVector> samples(plan.value().positions.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    std::copy_n(plan.value().positions[k].begin(), kJoints, samples[k].begin());
+  }
+  return run(op, samples);
 }
 
 Result<nlohmann::json> Parol6Ops::jog(const nlohmann::json& args) {
@@ -154,19 +166,16 @@ Result<nlohmann::json> Parol6Ops::jog(const nlohmann::json& args) {
   if (homed) {
     to[index] = std::clamp(to[index], joint_min()[index], joint_max()[index]);  // never past a limit, like CMD
   }
-  const double period_s = 1.0 / driver_.params_.exchange_rate_hz;
-  MoveTiming timing;
-  timing.duration_s = std::max(duration, period_s * 3);
-  std::string error;
-  const auto samples = plan_joint_move(measured(), to, timing, max_speed(), max_acceleration(), period_s, error);
-  if (samples.empty()) return make_error(ErrorCode::kRefused, "jog: " + error);
-  return run("jog", samples);
+  motion::MoveTiming timing;
+  timing.duration_s = std::max(duration, period_s() * 3);
+  timing.shape = motion::Shape::kTrapezoid;
+  return run("jog", motion::plan_joint_move(as_joints(measured()), as_joints(to), timing, limits(), period_s()));
 }
 
 Result<nlohmann::json> Parol6Ops::move_joints(const nlohmann::json& args) {
   OpArguments arguments("move_joints", args);
   const auto target = joints_argument(arguments.reader(), /*required=*/true);
-  const MoveTiming timing = arguments.timing();
+  const motion::MoveTiming timing = arguments.timing();
   if (target) {
     for (std::size_t j = 0; j < kJoints; ++j) {
       if ((*target)[j] < joint_min()[j] || (*target)[j] > joint_max()[j]) {
@@ -179,49 +188,37 @@ Result<nlohmann::json> Parol6Ops::move_joints(const nlohmann::json& args) {
   }
   if (auto error = arguments.finish()) return *error;
   if (auto refused = check_can_move("move_joints", /*needs_homed=*/true)) return *refused;
-  std::string error;
-  const auto samples = plan_joint_move(measured(), *target, timing, max_speed(), max_acceleration(),
-                                       1.0 / driver_.params_.exchange_rate_hz, error);
-  if (samples.empty()) return make_error(ErrorCode::kRefused, "move_joints: " + error);
-  return run("move_joints", samples);
+  return run("move_joints",
+             motion::plan_joint_move(as_joints(measured()), as_joints(*target), timing, limits(), period_s()));
 }
 
 Result<nlohmann::json> Parol6Ops::move_pose(const nlohmann::json& args) {
   OpArguments arguments("move_pose", args);
   const auto target = arguments.pose();
-  const MoveTiming timing = arguments.timing();
+  const motion::MoveTiming timing = arguments.timing();
   if (auto error = arguments.finish()) return *error;
   if (auto refused = check_can_move("move_pose", /*needs_homed=*/true)) return *refused;
-  const IkResult solution = inverse_kinematics(*target, measured(), joint_min(), joint_max());
-  if (!solution.converged) {
-    return make_error(ErrorCode::kRefused,
-                      "move_pose: no joint solution within the limits reaches that pose "
-                      "(closest: " +
-                          std::to_string(solution.position_error_m * 1e3) + " mm, " +
-                          std::to_string(solution.orientation_error_rad) + " rad off)");
-  }
-  std::string error;
-  const auto samples = plan_joint_move(measured(), solution.q_rad, timing, max_speed(), max_acceleration(),
-                                       1.0 / driver_.params_.exchange_rate_hz, error);
-  if (samples.empty()) return make_error(ErrorCode::kRefused, "move_pose: " + error);
-  auto started = run("move_pose", samples);
-  if (started) started.value()["joints_rad"] = solution.q_rad;
+  const auto plan = motion::plan_pose_move(parol6_model(), as_joints(measured()), transform_of(*target), timing,
+                                           limits(), period_s());
+  auto started = run("move_pose", plan);
+  if (started) started.value()["joints_rad"] = plan.value().positions.back();
   return started;
 }
 
 Result<nlohmann::json> Parol6Ops::move_cart(const nlohmann::json& args) {
   OpArguments arguments("move_cart", args);
   const auto target = arguments.pose();
-  MoveTiming timing = arguments.timing();
-  const double linear_speed =
-      arguments.reader().number_or("linear_speed_m_s", kDefaultLinearSpeedMps, NumberRange{.min = 0.001, .max = 0.2});
+  motion::MoveTiming timing = arguments.timing();
+  motion::LineOptions line;
+  line.linear_speed_m_s = arguments.reader().number_or("linear_speed_m_s", motion::kDefaultLinearSpeedMS,
+                                                       NumberRange{.min = 0.001, .max = 0.2});
   if (auto error = arguments.finish()) return *error;
   if (auto refused = check_can_move("move_cart", /*needs_homed=*/true)) return *refused;
-  std::string error;
-  const auto samples = plan_cartesian_move(measured(), *target, timing, joint_min(), joint_max(), max_speed(),
-                                           linear_speed, 1.0 / driver_.params_.exchange_rate_hz, error);
-  if (samples.empty()) return make_error(ErrorCode::kRefused, "move_cart: " + error);
-  return run("move_cart", samples);
+  // A line takes t or its tool speed; the fractions time joint moves only.
+  timing.speed_percent.reset();
+  timing.acceleration_percent.reset();
+  return run("move_cart", motion::plan_line_move(parol6_model(), as_joints(measured()), transform_of(*target), timing,
+                                                 limits(), period_s(), line));
 }
 
 Result<nlohmann::json> Parol6Ops::stop(const nlohmann::json& args) {

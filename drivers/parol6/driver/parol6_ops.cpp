@@ -86,14 +86,15 @@ std::optional<Pose> OpArguments::pose() {
   return Pose{*x, *y, *z, *roll, *pitch, *yaw};
 }
 
-MoveTiming OpArguments::timing() {
-  MoveTiming timing;
+motion::MoveTiming OpArguments::timing() {
+  constexpr double kDefaultFraction = 0.3;
+  motion::MoveTiming timing;
   timing.duration_s = reader().number("duration_s", NumberRange{.min = 0.05, .max = 120});
   const NumberRange fraction{.min = 0.01, .max = 1.0};
-  timing.speed_fraction = reader().number_or("speed_fraction", timing.speed_fraction, fraction);
-  timing.acceleration_fraction = reader().number_or("acceleration_fraction", timing.acceleration_fraction, fraction);
-  timing.profile =
-      reader().string_or("profile", "trap", {"trap", "poly"}) == "poly" ? Profile::kPolynomial : Profile::kTrapezoid;
+  timing.speed_percent = 100 * reader().number_or("speed_fraction", kDefaultFraction, fraction);
+  timing.acceleration_percent = 100 * reader().number_or("acceleration_fraction", kDefaultFraction, fraction);
+  timing.shape = reader().string_or("profile", "trap", {"trap", "poly"}) == "poly" ? motion::Shape::kPolynomial
+                                                                                   : motion::Shape::kTrapezoid;
   return timing;
 }
 

@@ -17,6 +17,8 @@
 #include "kinematics/parol6_kinematics.hpp"
 #include "robotd/driver/json_reader.hpp"
 #include "robotd/driver/op_arguments.hpp"
+#include "robotd/motion/joint_move.hpp"
+#include "robotd/motion/trajectory.hpp"
 
 namespace robotd::parol6 {
 
@@ -28,8 +30,9 @@ class OpArguments : public driver::OpArguments {
   OpArguments(std::string_view op, const nlohmann::json& args);
   /// {x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad}
   std::optional<Pose> pose();
-  /// duration_s, speed_fraction, acceleration_fraction, profile ("trap" | "poly").
-  MoveTiming timing();
+  /// duration_s, speed_fraction, acceleration_fraction (0.3 unless given), profile ("trap" unless
+  /// "poly"), as the motion layer's timing.
+  motion::MoveTiming timing();
 };
 
 class Parol6Ops {
@@ -64,11 +67,14 @@ class Parol6Ops {
   std::optional<Error> check_no_session_streams(std::string_view op) const;
   /// Hands the planned positions (every exchange period) to the RT thread.
   Result<nlohmann::json> run(std::string_view op, const std::vector<JointVector>& samples);
+  /// run() on a move the motion layer planned, or its refusal in the op's name.
+  Result<nlohmann::json> run(std::string_view op, const Result<motion::Trajectory>& plan);
+  /// What the motion layer plans with: the configured limits, the exchange period.
+  motion::JointLimits limits() const;
+  double period_s() const;
   JointVector measured() const;
   JointVector joint_min() const;
   JointVector joint_max() const;
-  JointVector max_speed() const;
-  JointVector max_acceleration() const;
 
   Parol6Driver& driver_;
 };

@@ -7,16 +7,10 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "ik_solver.hpp"
 #include "robotd/kinematics/arm_model.hpp"
 
 namespace robotd::parol6 {
 namespace {
-
-const kinematics::ArmModel& parol6_model() {
-  static const kinematics::ArmModel& model = *kinematics::find_arm_model(kArmModelName);
-  return model;
-}
 
 kinematics::ArmJoints arm_joints(const JointVector& q) {
   kinematics::ArmJoints joints{};
@@ -54,13 +48,14 @@ Pose pose_of(const Eigen::Isometry3d& transform) noexcept {
               .yaw_rad = pose.angles_rad[2]};
 }
 
-IkResult inverse_kinematics(const Pose& target, const JointVector& seed, const JointVector& min_rad,
-                            const JointVector& max_rad) {
-  return detail::solve_ik(transform_of(target), seed, min_rad, max_rad);
+const kinematics::ArmModel& parol6_model() {
+  static const kinematics::ArmModel& model = *kinematics::find_arm_model(kArmModelName);
+  return model;
 }
 
-IkResult detail::solve_ik(const Eigen::Isometry3d& goal, const JointVector& seed, const JointVector& min_rad,
-                          const JointVector& max_rad) {
+IkResult inverse_kinematics(const Pose& target, const JointVector& seed, const JointVector& min_rad,
+                            const JointVector& max_rad) {
+  const Eigen::Isometry3d goal = transform_of(target);
   // The shared solver's defaults: converged within 0.1 mm and 1e-3 rad, but polished on until
   // stuck, so that a Cartesian path lies on its line to well under a micrometre.
   const kinematics::IkSolution solved =

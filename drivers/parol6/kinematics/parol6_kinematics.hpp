@@ -1,8 +1,8 @@
 // PAROL6 kinematics (spec §11.1) on the shared arm model "parol6" (robotd/kinematics/
 // arm_model.hpp: the commander's standard-DH model to the tool, link 6 carrying the 62.8 / 45.25 mm
-// tool offset, and its roll/pitch/yaw convention), in the driver's 6-joint types; a
-// damped-least-squares inverse, and the commander's move timing (trapezoidal or quintic
-// polynomial) for MovePose / MoveCart. Lengths in m, angles in rad.
+// tool offset, and its roll/pitch/yaw convention), in the driver's 6-joint types, and a
+// damped-least-squares inverse. The moves themselves are planned by robotd/motion, the one home
+// of the commander's move rules. Lengths in m, angles in rad.
 #pragma once
 
 #include <array>
@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "codec/parol6_frames.hpp"
+#include "robotd/kinematics/arm_model.hpp"
 
 namespace robotd::parol6 {
 
@@ -21,6 +22,9 @@ namespace robotd::parol6 {
 inline constexpr std::string_view kArmModelName = "parol6";
 
 using JointVector = std::array<double, kJoints>;
+
+/// The shared model itself (what robotd/motion plans the ops' moves on).
+const kinematics::ArmModel& parol6_model();
 
 /// A tool pose: position in m and orientation in rad, in the convention the commander uses for
 /// MovePose(x, y, z, Rx, Ry, Rz) and shows in its GUI: roll_rad, pitch_rad, yaw_rad are its Rx,
@@ -49,36 +53,5 @@ struct IkResult {
 /// Damped least squares from `seed`, joint limits respected. Not real-time.
 IkResult inverse_kinematics(const Pose& target, const JointVector& seed, const JointVector& min_rad,
                             const JointVector& max_rad);
-
-enum class Profile : std::uint8_t { kTrapezoid, kPolynomial };
-
-/// How a move is timed, like the commander's MoveJoint / MovePose / MoveCart arguments:
-/// a duration (trapezoid: 1/3 accelerate, 1/3 cruise, 1/3 decelerate), or speed and
-/// acceleration as fractions 0 < f ≤ 1 of the leading joint's maximum. The leading joint is the
-/// one whose limit binds: no joint goes past f × its own maximum. The fractions time joint moves
-/// only; a Cartesian move takes a duration or a linear speed.
-struct MoveTiming {
-  Profile profile = Profile::kTrapezoid;
-  std::optional<double> duration_s;
-  double speed_fraction = 0.3;
-  double acceleration_fraction = 0.3;
-};
-
-/// Joint positions every `dt_s` from `from` to `to` (both included; the duration rounded up to
-/// whole samples), all joints arriving together; `max_speed` / `max_acceleration` per joint in
-/// rad/s, rad/s². A duration too short for a joint's maximum is refused. Errors in `error`.
-std::vector<JointVector> plan_joint_move(const JointVector& from, const JointVector& to, const MoveTiming& timing,
-                                         const JointVector& max_speed, const JointVector& max_acceleration, double dt_s,
-                                         std::string& error);
-
-/// A straight line of the tool from the pose at `from` to `target` (position linear,
-/// orientation by slerp) on the timing profile, solved by IK at every sample from the previous
-/// one. Without a duration the tool cruises at `linear_speed_m_s` and turns at most 25°/s (the
-/// commander's Cartesian maximum). Fails (empty, `error` says where) when a sample has no
-/// solution or a joint would exceed its limits or its max speed (near a singularity).
-std::vector<JointVector> plan_cartesian_move(const JointVector& from, const Pose& target, const MoveTiming& timing,
-                                             const JointVector& min_rad, const JointVector& max_rad,
-                                             const JointVector& max_speed, double linear_speed_m_s, double dt_s,
-                                             std::string& error);
 
 }  // namespace robotd::parol6

@@ -1,6 +1,6 @@
 // PAROL6 kinematics against the spec's FK check values (parol6_serial.md §11.1), the commander's
-// roll/pitch/yaw convention, the inverse kinematics, and the commander's move timing
-// (MoveJoint / MovePose trapezoid and polynomial, MoveCart along a line).
+// roll/pitch/yaw convention, the inverse kinematics, and MoveCart's straight line on the PAROL6
+// (planned by robotd/motion, whose joint-move rules tests/motion checks on any arm).
 #include "kinematics/parol6_kinematics.hpp"
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "codec/joint_units.hpp"
+#include "robotd/motion/cartesian_move.hpp"
 #include "thread_allocations.hpp"
 
 namespace robotd::parol6 {
@@ -280,203 +281,6 @@ TEST(Parol6InverseKinematics, KeepsToTheJointLimits) {
   EXPECT_LE(result.q_rad[0], radians(30));
 }
 
-// --- joint moves -----------------------------------------------------------------------------------
-
-/// Finite-difference speed of joint j between samples k − 1 and k.
-double speed_at(const std::vector<JointVector>& samples, std::size_t k, std::size_t j) {
-  return (samples[k][j] - samples[k - 1][j]) / kDt;
-}
-
-double peak_speed(const std::vector<JointVector>& samples, std::size_t j) {
-  double peak = 0;
-  for (std::size_t k = 1; k < samples.size(); ++k) peak = std::max(peak, std::abs(speed_at(samples, k, j)));
-  return peak;
-}
-
-double peak_acceleration(const std::vector<JointVector>& samples, std::size_t j) {
-  double peak = 0;
-  for (std::size_t k = 2; k < samples.size(); ++k) {
-    peak = std::max(peak, std::abs(speed_at(samples, k, j) - speed_at(samples, k - 1, j)) / kDt);
-  }
-  return peak;
-}
-
-constexpr JointVector kFrom = degrees_to_q({0, -90, 180, 0, 0, 180});
-constexpr JointVector kTo = degrees_to_q({60, -60, 150, 30, -45, 90});
-
-std::vector<JointVector> plan(const JointVector& from, const JointVector& to, const MoveTiming& timing,
-                              const Limits& limits = joint_limits()) {
-  std::string error;
-  std::vector<JointVector> samples =
-      plan_joint_move(from, to, timing, limits.max_speed, limits.max_acceleration, kDt, error);
-  EXPECT_TRUE(error.empty()) << error;
-  EXPECT_FALSE(samples.empty());
-  return samples;
-}
-
-TEST(Parol6JointMove, HonoursTheDurationWithBothEndsIncluded) {
-  for (const Profile profile : {Profile::kTrapezoid, Profile::kPolynomial}) {
-    const auto samples = plan(kFrom, kTo, MoveTiming{.profile = profile, .duration_s = 4.0});
-    EXPECT_EQ(samples.size(), 401U);
-    EXPECT_EQ(samples.front(), kFrom);
-    EXPECT_EQ(samples.back(), kTo);
-  }
-  EXPECT_EQ(plan(kFrom, kTo, MoveTiming{.duration_s = 4.004}).size(), 402U);  // rounded up to whole samples
-}
-
-TEST(Parol6JointMove, StartsAndEndsAtRest) {
-  for (const Profile profile : {Profile::kTrapezoid, Profile::kPolynomial}) {
-    for (const std::optional<double> duration : {std::optional<double>(4.0), std::optional<double>()}) {
-      const auto samples = plan(kFrom, kTo, MoveTiming{.profile = profile, .duration_s = duration});
-      ASSERT_GT(samples.size(), 10U);
-      for (std::size_t j = 0; j < kJoints; ++j) {
-        const double peak = peak_speed(samples, j);
-        EXPECT_LT(std::abs(speed_at(samples, 1, j)), 0.02 * peak + 1e-12);
-        EXPECT_LT(std::abs(speed_at(samples, samples.size() - 1, j)), 0.02 * peak + 1e-12);
-      }
-    }
-  }
-}
-
-TEST(Parol6JointMove, TrapezoidWithADurationIsThirds) {
-  const auto samples = plan(kFrom, kTo, MoveTiming{.profile = Profile::kTrapezoid, .duration_s = 3.0});
-  ASSERT_EQ(samples.size(), 301U);
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    const double distance = kTo[j] - kFrom[j];
-    if (distance == 0) continue;
-    // A quarter of the way after the first third, three quarters after the second.
-    EXPECT_NEAR((samples[100][j] - kFrom[j]) / distance, 0.25, 1e-12);
-    EXPECT_NEAR((samples[200][j] - kFrom[j]) / distance, 0.75, 1e-12);
-    // Cruise at 1.5 × the mean speed through the middle third, ramps of constant acceleration.
-    for (std::size_t k = 101; k <= 200; ++k) EXPECT_NEAR(speed_at(samples, k, j), 1.5 * distance / 3.0, 1e-9);
-    for (std::size_t k = 2; k <= 100; ++k) {
-      EXPECT_NEAR(speed_at(samples, k, j) - speed_at(samples, k - 1, j), 0.5 * distance * kDt, 1e-9);
-    }
-  }
-}
-
-TEST(Parol6JointMove, PolynomialIsTheQuintic) {
-  const auto samples = plan(kFrom, kTo, MoveTiming{.profile = Profile::kPolynomial, .duration_s = 2.0});
-  ASSERT_EQ(samples.size(), 201U);
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    const double distance = kTo[j] - kFrom[j];
-    if (distance == 0) continue;
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      const double tau = static_cast<double>(k) / 200.0;
-      const double s = 10 * std::pow(tau, 3) - 15 * std::pow(tau, 4) + 6 * std::pow(tau, 5);
-      EXPECT_NEAR(samples[k][j], kFrom[j] + s * distance, 1e-12);
-    }
-    EXPECT_NEAR(peak_speed(samples, j), 1.875 * std::abs(distance) / 2.0, 1e-3 * std::abs(distance));
-  }
-}
-
-TEST(Parol6JointMove, AllJointsFollowOneProfileAndArriveTogether) {
-  const auto samples = plan(kFrom, kTo, MoveTiming{});
-  for (const JointVector& q : samples) {
-    const double s = (q[0] - kFrom[0]) / (kTo[0] - kFrom[0]);
-    for (std::size_t j = 1; j < kJoints; ++j) {
-      if (kTo[j] == kFrom[j]) continue;
-      EXPECT_NEAR((q[j] - kFrom[j]) / (kTo[j] - kFrom[j]), s, 1e-12);
-    }
-  }
-}
-
-TEST(Parol6JointMove, WithoutADurationTheLeadingJointReachesItsFraction) {
-  const Limits limits = joint_limits();
-  const MoveTiming timing{.duration_s = std::nullopt, .speed_fraction = 0.5, .acceleration_fraction = 0.5};
-  const auto samples = plan(kFrom, kTo, timing, limits);
-  // J6 (90° at up to 2.65 rad/s) has the longest way for its speed: it leads, at half its maximum.
-  double leading = 0;
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    const double fraction = peak_speed(samples, j) / limits.max_speed[j];
-    EXPECT_LE(fraction, 0.5 + 1e-9) << "J" << j + 1;
-    leading = std::max(leading, fraction);
-  }
-  EXPECT_GT(leading, 0.49);
-}
-
-TEST(Parol6JointMove, NeverExceedsTheJointLimitsFraction) {
-  Random random;
-  const Limits limits = joint_limits();
-  for (int i = 0; i < 200; ++i) {
-    const JointVector from = random.joints_within(limits);
-    const JointVector to = random.joints_within(limits);
-    const MoveTiming timing{.profile = i % 2 == 0 ? Profile::kTrapezoid : Profile::kPolynomial,
-                            .duration_s = std::nullopt,
-                            .speed_fraction = random.uniform(0.05, 1.0),
-                            .acceleration_fraction = random.uniform(0.05, 1.0)};
-    const auto samples = plan(from, to, timing, limits);
-    ASSERT_GE(samples.size(), 2U);
-    EXPECT_EQ(samples.front(), from);
-    EXPECT_EQ(samples.back(), to);
-    bool some_limit_reached = false;
-    for (std::size_t j = 0; j < kJoints; ++j) {
-      const double speed = peak_speed(samples, j);
-      const double acceleration = peak_acceleration(samples, j);
-      EXPECT_LE(speed, timing.speed_fraction * limits.max_speed[j] * (1 + 1e-9));
-      EXPECT_LE(acceleration, timing.acceleration_fraction * limits.max_acceleration[j] * (1 + 1e-6));
-      some_limit_reached = some_limit_reached || speed > 0.97 * timing.speed_fraction * limits.max_speed[j] ||
-                           acceleration > 0.9 * timing.acceleration_fraction * limits.max_acceleration[j];
-    }
-    EXPECT_TRUE(some_limit_reached) << "the move is slower than it needs to be";
-  }
-}
-
-TEST(Parol6JointMove, AShortMoveIsATriangle) {
-  const Limits limits = joint_limits();
-  JointVector to = kFrom;
-  to[0] += 0.01;  // J1 never gets to cruise: 2·√(d/a) = 0.076 s
-  const auto samples = plan(
-      kFrom, to, MoveTiming{.duration_s = std::nullopt, .speed_fraction = 1.0, .acceleration_fraction = 1.0}, limits);
-  EXPECT_EQ(samples.size(), 9U);
-  EXPECT_LT(peak_speed(samples, 0), limits.max_speed[0]);
-  EXPECT_LE(peak_acceleration(samples, 0), limits.max_acceleration[0] * (1 + 1e-9));
-}
-
-TEST(Parol6JointMove, RefusesADurationTooShortForAJoint) {
-  const Limits limits = joint_limits();
-  std::string error;
-  const auto samples =
-      plan_joint_move(kFrom, kTo, MoveTiming{.duration_s = 0.5}, limits.max_speed, limits.max_acceleration, kDt, error);
-  EXPECT_TRUE(samples.empty());
-  EXPECT_NE(error.find("J6"), std::string::npos) << error;
-  EXPECT_NE(error.find("needs at least"), std::string::npos) << error;
-}
-
-TEST(Parol6JointMove, ANullMoveIsOneSampleOrHoldsForTheDuration) {
-  EXPECT_EQ(plan(kFrom, kFrom, MoveTiming{}), std::vector<JointVector>{kFrom});
-  const auto held = plan(kFrom, kFrom, MoveTiming{.duration_s = 0.5});
-  EXPECT_EQ(held.size(), 51U);
-  for (const JointVector& q : held) EXPECT_EQ(q, kFrom);
-}
-
-TEST(Parol6JointMove, RefusesBadArguments) {
-  const Limits limits = joint_limits();
-  const auto refused = [&](const JointVector& to, const MoveTiming& timing, double dt, const JointVector& speed) {
-    std::string error;
-    const bool empty = plan_joint_move(kFrom, to, timing, speed, limits.max_acceleration, dt, error).empty();
-    return empty && !error.empty();
-  };
-  EXPECT_TRUE(refused(kTo, MoveTiming{}, 0.0, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{}, -0.01, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = 0.0}, kDt, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = -1.0}, kDt, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = 1e9}, kDt, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = std::nullopt, .speed_fraction = 0.0}, kDt, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = std::nullopt, .speed_fraction = 1.5}, kDt, limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = std::nullopt, .acceleration_fraction = std::nan("")}, kDt,
-                      limits.max_speed));
-  EXPECT_TRUE(refused(kTo, MoveTiming{.duration_s = std::nullopt, .speed_fraction = 1e-12}, kDt,
-                      limits.max_speed));  // a million samples
-  JointVector bad = kTo;
-  bad[2] = std::nan("");
-  EXPECT_TRUE(refused(bad, MoveTiming{}, kDt, limits.max_speed));
-  JointVector no_speed = limits.max_speed;
-  no_speed[1] = 0;
-  EXPECT_TRUE(refused(kTo, MoveTiming{}, kDt, no_speed));
-  EXPECT_FALSE(refused(kTo, MoveTiming{}, kDt, limits.max_speed));
-}
-
 // --- Cartesian moves -------------------------------------------------------------------------------
 
 constexpr JointVector kWorking = degrees_to_q({10, -60, 150, 10, 45, 170});  // well clear of singularities
@@ -496,21 +300,47 @@ Pose shifted(const JointVector& q, double dx_m, double dy_m, double dz_m) {
   return pose;
 }
 
-std::vector<JointVector> plan_line(const JointVector& from, const Pose& target, const MoveTiming& timing,
+/// The line from `from` to `target` as the PAROL6 driver's move_cart plans it; empty, with
+/// `error`, when refused.
+std::vector<JointVector> plan_line(const JointVector& from, const Pose& target, const motion::MoveTiming& timing,
                                    double linear_speed_m_s, std::string& error) {
   const Limits limits = joint_limits();
-  return plan_cartesian_move(from, target, timing, limits.min_rad, limits.max_rad, limits.max_speed, linear_speed_m_s,
-                             kDt, error);
+  motion::JointLimits motion_limits;
+  motion_limits.min_rad.assign(limits.min_rad.begin(), limits.min_rad.end());
+  motion_limits.max_rad.assign(limits.max_rad.begin(), limits.max_rad.end());
+  motion_limits.max_speed_rad_s.assign(limits.max_speed.begin(), limits.max_speed.end());
+  motion_limits.max_acceleration_rad_s2.assign(limits.max_acceleration.begin(), limits.max_acceleration.end());
+  motion::LineOptions line;
+  line.linear_speed_m_s = linear_speed_m_s;
+  const auto plan = motion::plan_line_move(parol6_model(), {from.begin(), from.end()}, transform_of(target), timing,
+                                           motion_limits, kDt, line);
+  if (!plan) {
+    error = plan.error().message;
+    return {};
+  }
+  std::vector<JointVector> samples(plan.value().positions.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    std::copy_n(plan.value().positions[k].begin(), kJoints, samples[k].begin());
+  }
+  return samples;
 }
+
+/// Finite-difference speed of joint j between samples k − 1 and k.
+double speed_at(const std::vector<JointVector>& samples, std::size_t k, std::size_t j) {
+  return (samples[k][j] - samples[k - 1][j]) / kDt;
+}
+
+constexpr double kLineSpeed = 0.05;  // m/s: what a line with t does not use
 
 TEST(Parol6CartesianMove, TheToolStaysOnTheLine) {
   Pose target = shifted(kWorking, 0.05, -0.04, 0.03);
   target.roll_rad += 0.2;
   target.yaw_rad -= 0.1;
   const Limits limits = joint_limits();
-  for (const Profile profile : {Profile::kTrapezoid, Profile::kPolynomial}) {
+  for (const motion::Shape shape : {motion::Shape::kTrapezoid, motion::Shape::kPolynomial}) {
     std::string error;
-    const auto samples = plan_line(kWorking, target, MoveTiming{.profile = profile, .duration_s = 2.0}, 0.0, error);
+    const auto samples =
+        plan_line(kWorking, target, motion::MoveTiming{.duration_s = 2.0, .shape = shape}, kLineSpeed, error);
     ASSERT_EQ(samples.size(), 201U) << error;
     EXPECT_EQ(samples.front(), kWorking);
     const Eigen::Isometry3d start = tool_transform(kWorking);
@@ -542,7 +372,7 @@ TEST(Parol6CartesianMove, TheToolStaysOnTheLine) {
 TEST(Parol6CartesianMove, WithoutADurationTheToolCruisesAtTheLinearSpeed) {
   const Pose target = shifted(kWorking, 0.0, 0.06, 0.0);
   std::string error;
-  const auto samples = plan_line(kWorking, target, MoveTiming{}, 0.02, error);
+  const auto samples = plan_line(kWorking, target, motion::MoveTiming{}, 0.02, error);
   ASSERT_FALSE(samples.empty()) << error;
   EXPECT_EQ(samples.size(), 451U);  // 60 mm at 20 mm/s, trapezoid thirds: 1.5 × 3 s
   double peak = 0;
@@ -559,16 +389,16 @@ TEST(Parol6CartesianMove, APureTurnIsTimedByTheAngularLimit) {
   target.roll_rad += radians(20);  // 20° at 25°/s, polynomial: 1.875 × 0.8 s
   std::string error;
   const auto samples =
-      plan_line(kWorking, target, MoveTiming{.profile = Profile::kPolynomial, .duration_s = std::nullopt}, 0.02, error);
+      plan_line(kWorking, target, motion::MoveTiming{.shape = motion::Shape::kPolynomial}, 0.02, error);
   ASSERT_FALSE(samples.empty()) << error;
   EXPECT_EQ(samples.size(), 151U);
 }
 
-/// The percentage an error message gives: "… (42% of the path) …".
+/// The percentage an error message gives first: "… 42.0 % along the line …".
 std::optional<double> percent_in(const std::string& error) {
-  const std::size_t end = error.find("% of the path");
+  const std::size_t end = error.find(" % along the line");
   if (end == std::string::npos) return std::nullopt;
-  const std::size_t start = error.rfind('(', end);
+  const std::size_t start = error.rfind(' ', end - 1);
   if (start == std::string::npos) return std::nullopt;
   return std::stod(error.substr(start + 1, end - start - 1));
 }
@@ -579,7 +409,7 @@ TEST(Parol6CartesianMove, FailsNearAWristSingularityNamingWhere) {
   const JointVector from = degrees_to_q({0, -60, 150, 0, 20, 180});
   const Pose target = forward_kinematics(degrees_to_q({0, -60, 150, 5, -20, 180}));
   std::string error;
-  EXPECT_TRUE(plan_line(from, target, MoveTiming{.duration_s = 2.0}, 0.0, error).empty());
+  EXPECT_TRUE(plan_line(from, target, motion::MoveTiming{.duration_s = 2.0}, kLineSpeed, error).empty());
   EXPECT_NE(error.find("J4 would turn at"), std::string::npos) << error;
   EXPECT_NE(error.find("singularity"), std::string::npos) << error;
   const std::optional<double> percent = percent_in(error);
@@ -593,7 +423,8 @@ TEST(Parol6CartesianMove, PassesExactlyThroughAWristSingularityWhenNoJointMustSp
   const JointVector from = degrees_to_q({0, -60, 150, 0, 20, 180});
   const JointVector to = degrees_to_q({0, -60, 150, 0, -20, 180});
   std::string error;
-  const auto samples = plan_line(from, forward_kinematics(to), MoveTiming{.duration_s = 2.0}, 0.0, error);
+  const auto samples =
+      plan_line(from, forward_kinematics(to), motion::MoveTiming{.duration_s = 2.0}, kLineSpeed, error);
   ASSERT_EQ(samples.size(), 201U) << error;
   for (std::size_t j = 0; j < kJoints; ++j) EXPECT_NEAR(samples.back()[j], to[j], 1e-6) << "J" << j + 1;
 }
@@ -603,9 +434,10 @@ TEST(Parol6CartesianMove, FailsAtAJointLimitNamingWhere) {
   const JointVector from = degrees_to_q({100, -60, 150, 0, 45, 180});
   const Pose target = forward_kinematics(degrees_to_q({150, -60, 150, 0, 45, 180}));
   std::string error;
-  EXPECT_TRUE(plan_line(from, target, MoveTiming{.duration_s = 5.0}, 0.0, error).empty());
+  EXPECT_TRUE(plan_line(from, target, motion::MoveTiming{.duration_s = 5.0}, kLineSpeed, error).empty());
   EXPECT_NE(error.find("no joint solution"), std::string::npos) << error;
-  EXPECT_NE(error.find("past a joint limit"), std::string::npos) << error;
+  EXPECT_NE(error.find("J1 would need"), std::string::npos) << error;
+  EXPECT_NE(error.find("outside its limits"), std::string::npos) << error;
   const std::optional<double> percent = percent_in(error);
   ASSERT_TRUE(percent) << error;
   EXPECT_GT(*percent, 35);  // the chord reaches 123° a little before halfway
@@ -617,7 +449,7 @@ TEST(Parol6CartesianMove, OutOfReachFailsNamingWhere) {
   // straighten ever faster, so either message may come first.
   const Pose target = shifted(kWorking, 0.6, 0.0, 0.0);
   std::string error;
-  const auto samples = plan_line(kWorking, target, MoveTiming{.duration_s = 30.0}, 0.0, error);
+  const auto samples = plan_line(kWorking, target, motion::MoveTiming{.duration_s = 30.0}, kLineSpeed, error);
   EXPECT_TRUE(samples.empty());
   const std::optional<double> percent = percent_in(error);
   ASSERT_TRUE(percent) << error;
@@ -628,19 +460,20 @@ TEST(Parol6CartesianMove, OutOfReachFailsNamingWhere) {
 
 TEST(Parol6CartesianMove, ANullMoveIsOneSample) {
   std::string error;
-  const auto samples = plan_line(kWorking, forward_kinematics(kWorking), MoveTiming{}, 0.02, error);
+  const auto samples = plan_line(kWorking, forward_kinematics(kWorking), motion::MoveTiming{}, 0.02, error);
   EXPECT_EQ(samples, std::vector<JointVector>{kWorking}) << error;
 }
 
 TEST(Parol6CartesianMove, RefusesBadArguments) {
   std::string error;
-  EXPECT_TRUE(plan_line(kWorking, shifted(kWorking, 0.01, 0, 0), MoveTiming{}, 0.0, error).empty());
+  EXPECT_TRUE(plan_line(kWorking, shifted(kWorking, 0.01, 0, 0), motion::MoveTiming{}, 0.0, error).empty());
   EXPECT_FALSE(error.empty());
   Pose bad = forward_kinematics(kWorking);
   bad.pitch_rad = std::nan("");
-  EXPECT_TRUE(plan_line(kWorking, bad, MoveTiming{}, 0.02, error).empty());
+  EXPECT_TRUE(plan_line(kWorking, bad, motion::MoveTiming{}, 0.02, error).empty());
   EXPECT_FALSE(error.empty());
-  EXPECT_TRUE(plan_line(kWorking, shifted(kWorking, 0.01, 0, 0), MoveTiming{.duration_s = -1}, 0.02, error).empty());
+  EXPECT_TRUE(
+      plan_line(kWorking, shifted(kWorking, 0.01, 0, 0), motion::MoveTiming{.duration_s = -1}, 0.02, error).empty());
   EXPECT_FALSE(error.empty());
 }
 
