@@ -5,11 +5,14 @@
 // ending at a singularity and a statement the arm cannot do, without moving the arm.
 // The expected poses are worked out here from the programs' numbers with Eigen (the vendors'
 // fixed-axis roll, pitch, yaw written out) and compared with the pose the driver reports.
+#include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -129,6 +132,18 @@ class ArmProgramsTest : public RobotdTest {
     for (std::size_t j = 0; j < before.size(); ++j) EXPECT_NEAR(after[j], before[j], kUnmovedRad) << "joint " << j + 1;
   }
 
+  /// `read()` comes within `tolerance` of `expected` within a few seconds (a gripper finishes its
+  /// move after the program ends): a test failure naming `what` otherwise.
+  static void expect_reaches(const std::function<double()>& read, double expected, double tolerance,
+                             const std::string& what) {
+    double last = read();
+    for (int i = 0; i < 250 && std::fabs(last - expected) > tolerance; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      last = read();
+    }
+    EXPECT_NEAR(last, expected, tolerance) << what;
+  }
+
   std::string device_;
 };
 
@@ -155,6 +170,12 @@ TEST_F(PiperProgramsTest, TourEndsAtItsLastLineMovedAlongTheToolZ) {
   run_to_end(program_file("piper_tour.rbt"));
   // MoveCart(230,-40,390,180,50,180) then MoveCartRelTRF(0,0,20,0,0,0).
   expect_pose(reported_pose(), in_tool_frame(fixed_xyz_pose(230, -40, 390, 180, 50, 180), 0, 0, 20, 0));
+  // Gripper(200,...): 200/255 of the way from open (the joint's maximum stroke) to closed.
+  const DeviceInfo piper = client().list_devices().value().at(0);
+  const double open_m = piper.position_max.at(6);
+  const double closed_m = piper.position_min.at(6);
+  expect_reaches([&] { return call_device("piper", "state")["gripper"]["stroke_m"].get<double>(); },
+                 open_m - (open_m - closed_m) * 200.0 / 255.0, 0.002, "the gripper's stroke (m)");
 }
 
 TEST_F(PiperProgramsTest, DryRunFindsEachProblemAndMovesNothing) {
@@ -188,6 +209,9 @@ TEST_F(XarmProgramsTest, TourEndsAtItsLastLineMovedAndTurnedAboutTheToolZ) {
   run_to_end(program_file("xarm_tour.rbt"));
   // MoveCart(380,-60,330,180,0,0) then MoveCartRelTRF(0,0,-20,0,0,10).
   expect_pose(reported_pose(), in_tool_frame(fixed_xyz_pose(380, -60, 330, 180, 0, 0), 0, 0, -20, 10));
+  // Gripper(255,...): closed, 0 of the xArm gripper's 850 pulses.
+  expect_reaches([&] { return call_device("xarm", "gripper_get_position")["position"].get<double>(); }, 0, 10,
+                 "the gripper's position (pulses)");
 }
 
 TEST_F(XarmProgramsTest, DryRunFindsEachProblemAndMovesNothing) {
@@ -222,6 +246,9 @@ TEST_F(RealmanProgramsTest, TourEndsAtItsLastLineMovedAlongTheToolZ) {
   run_to_end(program_file("realman_tour.rbt"));
   // MoveCart(-400,-60,280,180,15,0) then MoveCartRelTRF(0,0,20,0,0,0).
   expect_pose(reported_pose(), in_tool_frame(fixed_xyz_pose(-400, -60, 280, 180, 15, 0), 0, 0, 20, 0));
+  // Gripper(255,...): closed, the opening 1 of 1..1000.
+  expect_reaches([&] { return call_device("realman", "get_gripper_state")["opening"].get<double>(); }, 1, 10,
+                 "the gripper's opening");
 }
 
 TEST_F(RealmanProgramsTest, DryRunFindsEachProblemAndMovesNothing) {
