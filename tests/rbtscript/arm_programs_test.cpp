@@ -151,8 +151,9 @@ class ArmProgramsTest : public RobotdTest {
 // (line 2), a joint beyond its limit (line 3), a straight line from the bent arm to a pose whose
 // only nearby joint solution has the wrist axes lined up (line 4), and an Output the arm has not
 // got (line 5). A move that fails leaves the plan where it was, so each is planned from line 1's.
-const std::vector<ExpectedProblem> kDryRunFindings{
-    {2, "no joint solution"}, {3, "limit"}, {4, "singularity"}, {5, "cannot do Output"}};
+std::vector<ExpectedProblem> dry_run_findings() {
+  return {{2, "no joint solution"}, {3, "limit"}, {4, "singularity"}, {5, "cannot do Output"}};
+}
 
 class PiperProgramsTest : public ArmProgramsTest {
  protected:
@@ -185,7 +186,7 @@ TEST_F(PiperProgramsTest, DryRunFindsEachProblemAndMovesNothing) {
       "MoveJoint(0,60,-60,0,90,0)\n"          // J5 is limited to about ±70°
       "MoveCart(230.746,0,438.545,0,85,0)\n"  // J5 at 0: J4 and J6 in line
       "Output(1,HIGH)\n",
-      kDryRunFindings);
+      dry_run_findings());
 }
 
 class XarmProgramsTest : public ArmProgramsTest {
@@ -221,7 +222,7 @@ TEST_F(XarmProgramsTest, DryRunFindsEachProblemAndMovesNothing) {
       "MoveJoint(0,-20,30,0,60,0)\n"               // J3 goes no higher than 11°
       "MoveCart(403.166,0,493.21,180,-73.19,0)\n"  // J5 at -13.19°: J4 and J6 in line
       "Output(1,HIGH)\n",
-      kDryRunFindings);
+      dry_run_findings());
 }
 
 class RealmanProgramsTest : public ArmProgramsTest {
@@ -258,7 +259,7 @@ TEST_F(RealmanProgramsTest, DryRunFindsEachProblemAndMovesNothing) {
       "MoveJoint(0,30,70,0,150,0)\n"             // J5 is limited to ±128°
       "MoveCart(-476.622,0,400.731,180,80,0)\n"  // J5 at 0: J4 and J6 in line
       "Output(1,HIGH)\n",
-      kDryRunFindings);
+      dry_run_findings());
 }
 
 class Parol6DryRunTest : public ArmProgramsTest {
@@ -275,7 +276,7 @@ TEST_F(Parol6DryRunTest, DryRunFindsEachProblemAndMovesNothing) {
       "MoveJoint(90,0,170,0,40,180)\n"  // J2 goes no higher than -3.4°
       "MoveCart(0,231.313,286.015,-90,0,-90)\n"
       "Output(3,HIGH)\n",  // the PAROL6 has OUT1 and OUT2
-      kDryRunFindings);
+      dry_run_findings());
 }
 
 }  // namespace
