@@ -63,6 +63,11 @@ class ChildProcess {
   /// The next line the child printed, or nullopt after `timeout`.
   std::optional<std::string> read_line(std::chrono::milliseconds timeout);
   void kill_hard();  // SIGKILL and reap
+  /// Sends `signal_number` (e.g. SIGINT, as Ctrl-C does).
+  void send_signal(int signal_number) const;
+  /// Waits up to `timeout` for the child to end and reaps it: its exit status (128 + the signal
+  /// when a signal ended it), or nullopt while it still runs.
+  std::optional<int> wait_exit(std::chrono::milliseconds timeout);
   pid_t pid() const { return pid_; }
 
  private:

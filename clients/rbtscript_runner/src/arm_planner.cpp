@@ -1,8 +1,10 @@
 #include "robotd/rbtscript/arm_planner.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <utility>
+#include <vector>
 
 #include "robotd/motion/cartesian_move.hpp"
 
@@ -54,7 +56,8 @@ Result<ArmPlanner> ArmPlanner::for_device(const DeviceInfo& device) {
   if (joints == 0) return invalid("device '" + device.name + "' lists no joints");
   if (device.position_min.size() != joints || device.position_max.size() != joints ||
       device.velocity_max.size() != joints || device.acceleration_max.size() != joints) {
-    return invalid("device '" + device.name + "' does not list position, velocity and acceleration limits for each of its " +
+    return invalid("device '" + device.name +
+                   "' does not list position, velocity and acceleration limits for each of its " +
                    std::to_string(joints) + " joints: a script needs them to plan its moves");
   }
   const kinematics::ArmModel* model = nullptr;
@@ -64,12 +67,18 @@ Result<ArmPlanner> ArmPlanner::for_device(const DeviceInfo& device) {
       return invalid("device '" + device.name + "' names the arm model '" + device.kinematic_model +
                      "', which this client does not know (a newer robotd?)");
     }
-    if (model->dof != joints) {
+    if (model->dof > joints) {
       return invalid("device '" + device.name + "' has " + std::to_string(joints) + " joints but its arm model '" +
                      device.kinematic_model + "' has " + std::to_string(model->dof));
     }
   }
-  motion::JointLimits limits{device.position_min, device.position_max, device.velocity_max, device.acceleration_max};
+  // The arm's joints come first; any after them (a PiPER's gripper) are not the arm's.
+  const auto arm_joints = static_cast<std::ptrdiff_t>(model != nullptr ? model->dof : joints);
+  const auto first = [arm_joints](const std::vector<double>& values) {
+    return std::vector<double>(values.begin(), values.begin() + arm_joints);
+  };
+  motion::JointLimits limits{first(device.position_min), first(device.position_max), first(device.velocity_max),
+                             first(device.acceleration_max)};
   return ArmPlanner(device, model, std::move(limits));
 }
 
@@ -94,16 +103,18 @@ Result<PlannedMove> ArmPlanner::plan(const MovePose& statement, const motion::Jo
   auto model = model_for("MovePose");
   if (!model) return model.error();
   const Eigen::Isometry3d goal = transform_of(*model.value(), statement.pose);
-  return planned(motion::plan_pose_move(*model.value(), from, goal, timing_of(statement.motion), limits_, kPlanningStepS),
-                 statement.motion.tracking);
+  return planned(
+      motion::plan_pose_move(*model.value(), from, goal, timing_of(statement.motion), limits_, kPlanningStepS),
+      statement.motion.tracking);
 }
 
 Result<PlannedMove> ArmPlanner::plan(const MoveCart& statement, const motion::Joints& from) const {
   auto model = model_for("MoveCart");
   if (!model) return model.error();
   const Eigen::Isometry3d goal = transform_of(*model.value(), statement.pose);
-  return planned(motion::plan_line_move(*model.value(), from, goal, timing_of(statement.motion), limits_, kPlanningStepS),
-                 statement.motion.tracking);
+  return planned(
+      motion::plan_line_move(*model.value(), from, goal, timing_of(statement.motion), limits_, kPlanningStepS),
+      statement.motion.tracking);
 }
 
 Result<PlannedMove> ArmPlanner::plan(const MoveCartRelTrf& statement, const motion::Joints& from) const {

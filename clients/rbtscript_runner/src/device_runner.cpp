@@ -1,5 +1,7 @@
 #include "robotd/rbtscript/device_runner.hpp"
 
+#include <cstddef>
+#include <cstdint>
 #include <utility>
 
 #include "arm_session.hpp"
@@ -25,7 +27,8 @@ Result<DeviceInfo> find_device(Client& client, const std::string& name) {
   return Error{ErrorCode::kInvalidArgument, "robotd has no device '" + name + "' (it has: " + names + ")"};
 }
 
-Result<motion::Joints> measured_joints(Client& client, const DeviceInfo& device) {
+// The arm's joints (the planner's) where the device reports them.
+Result<motion::Joints> measured_joints(Client& client, const DeviceInfo& device, std::size_t arm_joints) {
   auto state = client.next_joint_state(device.name, kJointStateWait);
   if (!state) return state.error();
   if (state.value().position.size() != device.joint_names.size()) {
@@ -33,7 +36,9 @@ Result<motion::Joints> measured_joints(Client& client, const DeviceInfo& device)
                                           std::to_string(state.value().position.size()) + " joint positions for " +
                                           std::to_string(device.joint_names.size()) + " joints"};
   }
-  return state.value().position;
+  motion::Joints joints = std::move(state).value().position;
+  joints.resize(arm_joints);
+  return joints;
 }
 
 }  // namespace
@@ -44,7 +49,7 @@ Result<DeviceRunReport> run_on_device(Client& client, const Program& program, co
   auto planner = ArmPlanner::for_device(device.value());
   if (!planner) return planner.error();
   const motion::DeviceIo io(device.value());
-  auto start = measured_joints(client, device.value());
+  auto start = measured_joints(client, device.value(), planner.value().joint_count());
   if (!start) return start.error();
 
   DeviceRunReport report;
@@ -59,6 +64,8 @@ Result<DeviceRunReport> run_on_device(Client& client, const Program& program, co
 
   SessionRequest request;
   request.device = device.value().name;
+  for (std::size_t j = 0; j < planner.value().joint_count(); ++j)
+    request.motor_ids.push_back(static_cast<std::int32_t>(j));
   request.mode = ControlMode::kPosition;
   request.on_timeout = Behavior::kDamping;  // robotd applies what the arm can (a position-only arm holds)
   request.timeout = options.session_timeout;
@@ -67,7 +74,7 @@ Result<DeviceRunReport> run_on_device(Client& client, const Program& program, co
   detail::ArmSession arm(client, request);
   if (auto opened = arm.open(); !opened) return opened.error();
   // The arm may have moved since the dry run looked: plan the first move from where it is now.
-  auto now = measured_joints(client, device.value());
+  auto now = measured_joints(client, device.value(), planner.value().joint_count());
   if (!now) return now.error();
   static const std::atomic<bool> kNeverStop{false};
   const std::atomic<bool>& stop = options.stop != nullptr ? *options.stop : kNeverStop;

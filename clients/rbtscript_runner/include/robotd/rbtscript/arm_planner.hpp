@@ -28,11 +28,15 @@ struct PlannedMove {
 class ArmPlanner {
  public:
   /// For `device` as /list_devices describes it. Fails (kInvalidArgument) when the device has no
-  /// joint limits to plan with or names an arm model robotd does not know.
+  /// joint limits to plan with or names an arm model robotd does not know or that has more joints
+  /// than the device.
   static Result<ArmPlanner> for_device(const DeviceInfo& device);
 
   const DeviceInfo& device() const { return device_; }
-  std::size_t joint_count() const { return device_.joint_names.size(); }
+  /// The joints a program moves: the device's first joints, as many as its arm model has (all of
+  /// them without a model). Joints after those (a PiPER's gripper) are not planned or streamed:
+  /// the Gripper statement drives them.
+  std::size_t joint_count() const { return limits_.min_rad.size(); }
   /// nullptr when the device names no arm model: joint moves only.
   const kinematics::ArmModel* model() const { return model_; }
 

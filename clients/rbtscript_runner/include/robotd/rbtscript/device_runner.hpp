@@ -1,9 +1,10 @@
 // Running an RBTscript program on a device through robotd: first a dry run of the whole program
 // (every move planned from where the one before it ends, on the device's limits and arm model;
 // every Output and Gripper statement mapped to a device op), then, when nothing is wrong and a
-// dry run was not all that was asked for, the run itself in a POSITION session on every joint of
-// the device. A stop (the flag), an e-stop, a fault or the end of the session ends the run with
-// the arm held where it was.
+// dry run was not all that was asked for, the run itself in a POSITION session on the arm's
+// joints (ArmPlanner::joint_count: a PiPER's gripper joint is left to the Gripper statement).
+// A stop (the flag), an e-stop, a fault or the end of the session ends the run with the arm held
+// where it was.
 #pragma once
 
 #include <atomic>
