@@ -201,21 +201,26 @@ TEST(LineMove, StopsBeforeASingularitySayingHowFarAlong) {
   EXPECT_NE(message.find("it is clear up to"), std::string::npos) << message;
 }
 
-TEST(LineMove, PassesThroughASingularityWhenNoJointMustSpin) {
-  // The same line without the J4 turn only needs J5 to pass zero; starting on the singularity is
-  // fine too.
+TEST(LineMove, StopsCloseToASingularityEvenWhenNoJointMustSpinButMayLeaveOneItStartsAt) {
+  // J5 from 20° to −20° passes the PAROL6's wrist singularity (J5 = 0): the line stops close to
+  // it, as the commander's MoveCart does; from J5 = 0 away from it, it goes.
   const ArmModel& parol6 = model("parol6");
   const Joints from = degrees({0, -60, 150, 0, 20, 180});
-  const Joints to = degrees({0, -60, 150, 0, -20, 180});
-  const Result<Trajectory> through =
-      plan_line_move(parol6, from, pose_at(parol6, to), {.duration_s = 2.0}, limits_of(parol6), kLineDt);
-  ASSERT_TRUE(through.ok()) << through.error().message;
-  for (std::size_t j = 0; j < to.size(); ++j) EXPECT_NEAR(through.value().positions.back()[j], to[j], 1e-6);
+  const Joints through = degrees({0, -60, 150, 0, -20, 180});
+  const Result<Trajectory> stopped =
+      plan_line_move(parol6, from, pose_at(parol6, through), {.duration_s = 2.0}, limits_of(parol6), kLineDt);
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_NE(stopped.error().message.find("line move: stops before a singularity "), std::string::npos)
+      << stopped.error().message;
   const Joints singular = degrees({0, -60, 150, 0, 0, 180});
   EXPECT_LT(kinematics::smallest_singular_value(parol6, arm(singular)), 1e-9);
   const Result<Trajectory> away =
       plan_line_move(parol6, singular, pose_at(parol6, from), {.duration_s = 2.0}, limits_of(parol6), kLineDt);
   EXPECT_TRUE(away.ok()) << away.error().message;
+  // Without the margin the line goes through.
+  const Result<Trajectory> unguarded = plan_line_move(parol6, from, pose_at(parol6, through), {.duration_s = 2.0},
+                                                      limits_of(parol6), kLineDt, {.min_singular_value = 0.0});
+  EXPECT_TRUE(unguarded.ok()) << unguarded.error().message;
 }
 
 TEST(LineMove, KeepsToTheJointLimitsOnEverySample) {

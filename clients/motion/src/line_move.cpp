@@ -28,8 +28,11 @@ using kinematics::ArmModel;
 // from them by rounding only).
 constexpr double kNullTravelM = 1e-9;
 constexpr double kNullTurnRad = 1e-9;
-// A joint too fast where the Jacobian's smallest singular value has fallen below this fraction of
-// the largest it had on the line is near a singularity (the values' scale differs from arm to arm).
+// A line stops where the Jacobian's smallest singular value falls below the threshold and below
+// this fraction of its value at the line's start.
+constexpr double kApproachFraction = 0.5;
+// A joint too fast where the smallest singular value has fallen below this fraction of the
+// largest it had on the line is near a singularity.
 constexpr double kSingularFraction = 0.35;
 
 /// The tool's line: position linear, orientation slerped, both at the same fraction s.
@@ -170,7 +173,8 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
   positions.reserve(count + 1);
   ArmJoints previous = to_arm(from);
   double previous_s = 0;
-  double widest_margin = kinematics::smallest_singular_value(model, previous);
+  const double start_margin = kinematics::smallest_singular_value(model, previous);
+  double widest_margin = start_margin;
   for (std::size_t k = 1; k <= count; ++k) {
     const double s = profile.position(static_cast<double>(k) * dt_s);
     const Eigen::Isometry3d pose = line.at(s);
@@ -178,17 +182,25 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
     if (!solution.converged) {
       return fail("no joint solution " + line.where(s) + ": " + unreachable(model, pose, previous, limits, solution));
     }
-    // Near a singularity the joints a line needs speed up without bound: the line stops before
-    // the first sample that would turn a joint faster than its maximum, and says whether a
-    // singularity is why. Passing through one is fine when no joint has to spin (a wrist
-    // straightening on the way), as is starting at one (the commander's examples start their
-    // Cartesian moves from MoveJoint(90, -90, 180, 0, 0, 180), a straight wrist).
+    // The commander's rule: a line that comes close to a singularity stops there. Close: the
+    // Jacobian's smallest singular value below the threshold and below half what it was where
+    // the line started, so that a line may start at one and leave it (the commander's examples
+    // start their Cartesian moves from MoveJoint(90, -90, 180, 0, 0, 180), a straight wrist).
+    const double margin = kinematics::smallest_singular_value(model, solution.q_rad);
+    if (margin < options.min_singular_value && margin < kApproachFraction * start_margin) {
+      return fail("stops before a singularity " + line.where(s) + " (the Jacobian's smallest singular value there is " +
+                  number(margin) + ", below " + number(options.min_singular_value) + "); it is clear up to " +
+                  line.where(previous_s));
+    }
+    // Nearer one than that, or at the edge of the workspace, the joints speed up without bound:
+    // the line stops before a joint would turn faster than its maximum, and says whether a
+    // singularity is why (the singular values' scale differs from arm to arm, so relative to the
+    // largest on the line).
     for (std::size_t j = 0; j < model.dof; ++j) {
       const double speed = std::abs(solution.q_rad[j] - previous[j]) / dt_s;
       if (speed <= limits.max_speed_rad_s[j] * (1 + kLimitMargin)) continue;
       const std::string turning = joint_name(j) + " would turn at " + number(speed) + " rad/s (max " +
                                   number(limits.max_speed_rad_s[j]) + ") " + line.where(s);
-      const double margin = kinematics::smallest_singular_value(model, solution.q_rad);
       if (margin < options.min_singular_value || margin < kSingularFraction * widest_margin) {
         return fail("stops before a singularity: " + turning + ", where the Jacobian's smallest singular value is " +
                     number(margin) + " (it was " + number(widest_margin) + " earlier on the line); it is clear up to " +
@@ -199,7 +211,7 @@ Result<Trajectory> plan_line_move_as(std::string_view what, const ArmModel& mode
                   "up to " +
                   line.where(previous_s));
     }
-    widest_margin = std::max(widest_margin, kinematics::smallest_singular_value(model, solution.q_rad));
+    widest_margin = std::max(widest_margin, margin);
     positions.push_back(to_joints(solution.q_rad, model.dof));
     previous = solution.q_rad;
     previous_s = s;

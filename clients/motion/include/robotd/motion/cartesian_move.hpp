@@ -7,11 +7,10 @@
 //     "trap", as for joint moves); without, a thirds trapezoid (or the polynomial if told) whose
 //     cruise keeps to a tool speed and turning speed. IK at every sample, seeded with the one
 //     before, so that the arm stays on one branch. The line stops, with an error naming how far
-//     along it, before a sample that has no solution within the joint limits or one that would
-//     turn a joint faster than its maximum; near a singularity (the Jacobian's smallest singular
-//     value below a threshold, or fallen to a third of its largest on the line) the error says
-//     that is why. A line may start at a singularity,
-//     or pass through one when no joint has to spin.
+//     along it, before a sample that has no solution within the joint limits, one that comes
+//     close to a singularity (the Jacobian's smallest singular value below a threshold and below
+//     half its value at the start: a line may start at a singularity and leave it), or one that
+//     would turn a joint faster than its maximum (the error says when a singularity is why).
 //   - plan_tool_relative_move (MoveCartRelTRF): the line to the start pose moved by `delta` in
 //     the tool's own frame (start · delta).
 // A pose is the tool's (ArmModel::tool) in the base frame, lengths in m.
@@ -23,8 +22,8 @@
 
 #include "robotd/kinematics/arm_model.hpp"
 #include "robotd/motion/joint_move.hpp"
-#include "robotd/result.hpp"
 #include "robotd/motion/trajectory.hpp"
+#include "robotd/result.hpp"
 
 namespace robotd::motion {
 
@@ -33,13 +32,14 @@ namespace robotd::motion {
 inline constexpr double kDefaultLinearSpeedMS = 0.05;
 /// Without t, the fastest a line turns the tool: the commander's Cartesian angular maximum, 25°/s.
 inline constexpr double kDefaultAngularSpeedRadS = 25.0 * std::numbers::pi / 180.0;
-/// A joint too fast where the Jacobian's smallest singular value is below this: a singularity.
+/// A sample whose Jacobian's smallest singular value is below this (and below half the start's) is
+/// too close to a singularity.
 inline constexpr double kDefaultMinSingularValue = 1e-3;
 
 struct LineOptions {
   double linear_speed_m_s = kDefaultLinearSpeedMS;        // without t: the tool's cruise speed
   double angular_speed_rad_s = kDefaultAngularSpeedRadS;  // without t: its fastest turn
-  double min_singular_value = kDefaultMinSingularValue;   // what counts as near a singularity (m and rad mixed)
+  double min_singular_value = kDefaultMinSingularValue;   // a singularity's margin (m and rad mixed)
 };
 
 /// IK of `goal` from `from`, then a joint move; `limits` (the device's) bound the IK too.
