@@ -1,5 +1,6 @@
-"""robotd for Python: sessions, commands, joint states, safety and device operations, over the
-robotd C API (librobotd_c) with ctypes. docs/clients.md ("Python") is the guide.
+"""robotd for Python: sessions, commands, joint states, safety and device operations, and motion
+planned here (run_rbtscript, Session.move_joints, Session.move_cartesian), over the robotd C API
+(librobotd_c) with ctypes. docs/clients.md ("Python") is the guide.
 
     import robotd
 

@@ -3,6 +3,7 @@ behind Session.move_joints and Session.move_cartesian. The planning runs here, o
 limits and the arm model its driver names; robotd follows the stream. Ctrl-C, or a
 threading.Event passed as `stop`, ends a program or a move with the arm held."""
 import math
+import traceback
 from ctypes import byref, c_double, c_int, c_void_p, pointer
 
 from . import _native
@@ -64,7 +65,6 @@ def run_rbtscript(client, program, *, device=None, dry_run=False, loops=None, on
             try:
                 on_statement(line, text(statement), pass_number)
             except Exception as error:  # an exception cannot cross the C library
-                import traceback
                 traceback.print_exception(type(error), error, error.__traceback__)
 
         callback = _native.RbtscriptProgress(progress)

@@ -12,21 +12,23 @@ namespace {
 Result<rbtscript::ArmPlanner> planner_for(Client& client, const Session& session) {
   auto device = rbtscript::detail::find_device(client, session.device());
   if (!device) return device.error();
+  auto planner = rbtscript::ArmPlanner::for_device(device.value());
+  if (!planner) return planner.error();
   if (session.mode() != ControlMode::kPosition) {
     return Error{ErrorCode::kInvalidArgument,
                  "a planned move needs a POSITION session; this one on '" + session.device() + "' is in another mode"};
   }
   const std::vector<std::int32_t>& motors = session.motor_ids();
-  bool every_joint = motors.size() == device.value().joint_names.size();
-  for (std::size_t j = 0; every_joint && j < motors.size(); ++j)
-    every_joint = motors[j] == static_cast<std::int32_t>(j);
+  const std::size_t joints = planner.value().joint_count();
+  bool every_joint = motors.size() == joints;
+  for (std::size_t j = 0; every_joint && j < joints; ++j) every_joint = motors[j] == static_cast<std::int32_t>(j);
   if (!every_joint) {
-    return Error{ErrorCode::kInvalidArgument,
-                 "a planned move needs a session on every joint of device '" + session.device() + "' (motors 0.." +
-                     std::to_string(device.value().joint_names.size() - 1) +
-                     " in order: request no motor ids); this one holds " + std::to_string(motors.size()) + " motor(s)"};
+    return Error{ErrorCode::kInvalidArgument, "a planned move needs a session on every joint of device '" +
+                                                  session.device() + "' (motors 0.." + std::to_string(joints - 1) +
+                                                  " in order: request no motor ids); this one holds " +
+                                                  std::to_string(motors.size()) + " motor(s)"};
   }
-  return rbtscript::ArmPlanner::for_device(device.value());
+  return planner;
 }
 
 Result<StreamReport> follow(Client& client, Session& session, const Result<Trajectory>& planned,
