@@ -408,7 +408,7 @@ typedef struct robotd_move_options {
 } robotd_move_options;
 
 typedef struct robotd_move_report {
-  bool stopped;          /* the stop flag ended the move: the arm holds where it was measured then */
+  bool stopped; /* the stop flag ended the move: the arm holds where it was measured then */
   uint64_t commands_sent;
   double fraction_done; /* of the planned trajectory, 0..1 */
   size_t joint_count;
@@ -432,15 +432,14 @@ ROBOTD_API robotd_status robotd_move_options_init(robotd_move_options* options);
  * ROBOTD_REFUSED on an e-stop, a fault or the end of the session mid-move; ROBOTD_TIMEOUT when
  * the joints do not arrive. *report (may be NULL) is filled on success. */
 ROBOTD_API robotd_status robotd_session_move_joints(robotd_client* client, robotd_session* session,
-                                                   const double* target_rad, size_t count,
-                                                   const robotd_move_options* options, robotd_move_report* report);
+                                                    const double* target_rad, size_t count,
+                                                    const robotd_move_options* options, robotd_move_report* report);
 /* Moves the tool to *goal along `path`. A line takes only t and the shape. Fails as
  * robotd_session_move_joints does, and with ROBOTD_INVALID_ARGUMENT (nothing moved) when the
  * device names no arm model, the goal is out of reach, or the line meets a singularity or a limit. */
 ROBOTD_API robotd_status robotd_session_move_cartesian(robotd_client* client, robotd_session* session,
-                                                      const robotd_pose* goal, robotd_cartesian_path path,
-                                                      const robotd_move_options* options,
-                                                      robotd_move_report* report);
+                                                       const robotd_pose* goal, robotd_cartesian_path path,
+                                                       const robotd_move_options* options, robotd_move_report* report);
 
 /* ---- RBTscript -------------------------------------------------------------------------- */
 
@@ -464,13 +463,13 @@ typedef enum robotd_rbtscript_end ROBOTD_ENUM_BASE {
 typedef void (*robotd_rbtscript_progress)(size_t line, const char* statement, uint64_t pass, void* user_data);
 
 typedef struct robotd_rbtscript_options {
-  const char* device;                   /* NULL or "" = robotd's only device */
-  bool dry_run;                         /* default false: only check the program */
-  uint64_t loops;                       /* default 0 = Loop() runs until stopped; else passes at most */
-  const volatile int* stop;             /* default NULL; else non-zero ends the run with the arm held; read
-                                         * every few ms */
+  const char* device;                     /* NULL or "" = robotd's only device */
+  bool dry_run;                           /* true: only check the program; default false */
+  uint64_t loops;                         /* default 0 = Loop() runs until stopped; else passes at most */
+  const volatile int* stop;               /* default NULL; else non-zero ends the run with the arm held; read
+                                           * every few ms */
   robotd_rbtscript_progress on_statement; /* default NULL */
-  void* user_data;                      /* passed to on_statement */
+  void* user_data;                        /* passed to on_statement */
   int32_t session_timeout_ms; /* default 2000: robotd damps (or holds) the arm this long after the last command
                                * if this process dies */
 } robotd_rbtscript_options;
@@ -505,13 +504,13 @@ ROBOTD_API robotd_status robotd_rbtscript_options_init(robotd_rbtscript_options*
  * happened (free it with robotd_rbtscript_report_free). Fails (nothing moved) when robotd does
  * not answer, the device is unknown or cannot be planned for, or the session is refused. */
 ROBOTD_API robotd_status robotd_run_rbtscript(robotd_client* client, const char* program_text,
-                                             const robotd_rbtscript_options* options,
-                                             robotd_rbtscript_report** report);
+                                              const robotd_rbtscript_options* options,
+                                              robotd_rbtscript_report** report);
 ROBOTD_API robotd_status robotd_rbtscript_report_outcome(const robotd_rbtscript_report* report,
-                                                        robotd_rbtscript_outcome* outcome);
+                                                         robotd_rbtscript_outcome* outcome);
 /* Problem `index` (< the outcome's problem_count), in line order. */
 ROBOTD_API robotd_status robotd_rbtscript_report_problem(const robotd_rbtscript_report* report, size_t index,
-                                                        robotd_rbtscript_problem* problem);
+                                                         robotd_rbtscript_problem* problem);
 /* Frees the report and its strings. NULL is allowed. */
 ROBOTD_API void robotd_rbtscript_report_free(robotd_rbtscript_report* report);
 
