@@ -849,6 +849,197 @@ static bool example_pd_program_runs_the_law(fixture* f) {
 
 /* ---- main -------------------------------------------------------------------------------- */
 
+/* ---- planned moves and RBTscript ------------------------------------------------------- */
+
+/* Two postures of the test arm, which plans as a PAROL6 ("kinematic_model": "parol6"), clear of
+ * its singularities, and the tool poses the PAROL6 model puts them at (kinematics::tool_pose and
+ * pose_of, its Euler convention). */
+static const double kPostureA[6] = {0.3, -1.4, 2.0, -0.4, 0.6, 0.8};
+static const double kPostureB[6] = {0.4, -1.3, 1.9, -0.3, 0.7, 0.9};
+static const robotd_pose kPoseA = {{0.205354116, 0.069758867, 0.113302291}, {2.473519361, 0.843256677, -3.140308032}};
+static const robotd_pose kPoseB = {{0.175020425, 0.090879026, 0.084637194}, {2.104167985, 0.749339420, -3.030329488}};
+
+/* The arm's measured joints are within 0.005 rad of `target` (the moves arrive within 0.1°). */
+static bool arm_is_at(robotd_client* client, const double* target) {
+  static robotd_joint_state state;
+  CHECK_OK(robotd_next_joint_state(client, "arm", 1000, &state));
+  for (size_t j = 0; j < 6; ++j) {
+    if (fabs(state.position[j] - target[j]) > 0.005) {
+      fprintf(stderr, "joint %zu is at %.4f rad, expected %.4f\n", j, state.position[j], target[j]);
+      return false;
+    }
+  }
+  return true;
+}
+
+static bool planned_moves_bring_the_arm_and_its_tool_to_their_goals(fixture* f) {
+  robotd_session* session = acquire(f->client, NULL, 0, ROBOTD_MODE_POSITION, ROBOTD_BEHAVIOR_KEEP, 2000);
+  CHECK(session != NULL);
+  robotd_move_options options;
+  robotd_move_report report;
+  CHECK_OK(robotd_move_options_init(&options));
+  CHECK(options.duration_s == 0 && options.shape == ROBOTD_SHAPE_DEFAULT && options.stop == NULL);
+  options.speed_percent = 60;
+  options.acceleration_percent = 60;
+  CHECK_OK(robotd_session_move_joints(f->client, session, kPostureA, 6, &options, &report));
+  CHECK(!report.stopped && report.fraction_done == 1.0 && report.joint_count == 6);
+  CHECK(strstr(report.summary, "arrived") != NULL);
+  CHECK(arm_is_at(f->client, kPostureA));
+
+  /* The pose of posture B by IK and a joint move, then back to A's pose on a straight line. */
+  CHECK_OK(robotd_move_options_init(&options));
+  options.duration_s = 1.0;
+  CHECK_OK(robotd_session_move_cartesian(f->client, session, &kPoseB, ROBOTD_PATH_JOINT, &options, &report));
+  CHECK(arm_is_at(f->client, kPostureB));
+  options.shape = ROBOTD_SHAPE_TRAPEZOID;
+  CHECK_OK(robotd_session_move_cartesian(f->client, session, &kPoseA, ROBOTD_PATH_LINE, &options, NULL));
+  CHECK(arm_is_at(f->client, kPostureA));
+
+  /* A stop flag already set: the move ends at once, the arm held. */
+  volatile int stop = 1;
+  options.stop = &stop;
+  CHECK_OK(robotd_session_move_joints(f->client, session, kPostureB, 6, &options, &report));
+  CHECK(report.stopped);
+  CHECK(arm_is_at(f->client, kPostureA));
+  robotd_session_free(session);
+  return true;
+}
+
+static bool planned_move_arguments_are_checked(fixture* f) {
+  robotd_session* session = acquire(f->client, NULL, 0, ROBOTD_MODE_POSITION, ROBOTD_BEHAVIOR_KEEP, 2000);
+  CHECK(session != NULL);
+  robotd_move_options options;
+  CHECK_OK(robotd_move_options_init(&options));
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, kPostureA, 2, NULL, NULL),
+             "robotd_session_move_joints: the target gives 2 joint value(s); device 'arm' has 6 joints");
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, NULL, 6, NULL, NULL),
+             "target_rad is NULL");
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(NULL, session, kPostureA, 6, NULL, NULL),
+             "client is NULL");
+  options.duration_s = -1;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, kPostureA, 6, &options, NULL),
+             "options->duration_s is -1");
+  CHECK_OK(robotd_move_options_init(&options));
+  options.speed_percent = 150;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, kPostureA, 6, &options, NULL),
+             "options->speed_percent is 150");
+  CHECK_OK(robotd_move_options_init(&options));
+  options.shape = (robotd_move_shape)7;
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, kPostureA, 6, &options, NULL),
+             "options->shape is 7");
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT,
+             robotd_session_move_cartesian(f->client, session, &kPoseA, (robotd_cartesian_path)3, NULL, NULL),
+             "path is 3");
+  const robotd_pose far = {{2.0, 0, 0.3}, {0, 0, 0}};
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT,
+             robotd_session_move_cartesian(f->client, session, &far, ROBOTD_PATH_JOINT, NULL, NULL), "");
+  robotd_session_free(session);
+
+  const int32_t some[2] = {0, 1};
+  session = acquire(f->client, some, 2, ROBOTD_MODE_POSITION, ROBOTD_BEHAVIOR_KEEP, 2000);
+  CHECK(session != NULL);
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, kPostureA, 6, NULL, NULL),
+             "a planned move needs a session on every joint of device 'arm'");
+  robotd_session_free(session);
+  return true;
+}
+
+typedef struct statements_seen {
+  size_t count;
+  size_t last_line;
+  uint64_t last_pass;
+} statements_seen;
+
+static void count_statement(size_t line, const char* statement, uint64_t pass, void* user_data) {
+  statements_seen* seen = (statements_seen*)user_data;
+  (void)statement;
+  ++seen->count;
+  seen->last_line = line;
+  seen->last_pass = pass;
+}
+
+static bool rbtscript_reports_problems_with_their_line_and_moves_nothing(fixture* f) {
+  robotd_rbtscript_report* report = NULL;
+  robotd_rbtscript_outcome outcome;
+  robotd_rbtscript_problem problem;
+  /* A syntax error: the program is not checked against the device. */
+  CHECK_OK(robotd_run_rbtscript(f->client, "Delay(1)\nMoveJoint(1,2\n", NULL, &report));
+  CHECK_OK(robotd_rbtscript_report_outcome(report, &outcome));
+  CHECK(outcome.syntax_errors && outcome.problem_count == 1 && outcome.end == ROBOTD_RBTSCRIPT_NOT_RUN);
+  CHECK_OK(robotd_rbtscript_report_problem(report, 0, &problem));
+  CHECK(problem.line == 2 && strcmp(problem.statement, "") == 0);
+  CHECK(strncmp(problem.description, "line 2, column ", 15) == 0);
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_rbtscript_report_problem(report, 1, &problem),
+             "index is 1: the report has 1 problem(s)");
+  robotd_rbtscript_report_free(report);
+
+  /* A joint past the arm's limit (±2.5 rad) on line 3, in a dry run and in a run. */
+  const char* program = "Begin()\nMoveJoint(10,-60,100,0,20,0,t=2)\nMoveJoint(0,0,170,0,0,0)\nEnd()\n";
+  robotd_rbtscript_options options;
+  CHECK_OK(robotd_rbtscript_options_init(&options));
+  CHECK(options.session_timeout_ms == 2000 && options.loops == 0 && !options.dry_run);
+  for (int dry_run = 1; dry_run >= 0; --dry_run) {
+    options.dry_run = dry_run == 1;
+    CHECK_OK(robotd_run_rbtscript(f->client, program, &options, &report));
+    CHECK_OK(robotd_rbtscript_report_outcome(report, &outcome));
+    CHECK(!outcome.syntax_errors && outcome.problem_count == 1 && outcome.end == ROBOTD_RBTSCRIPT_NOT_RUN);
+    CHECK(strcmp(outcome.device, "arm") == 0 && outcome.moves_planned == 1);
+    CHECK_OK(robotd_rbtscript_report_problem(report, 0, &problem));
+    CHECK(problem.line == 3 && problem.column == 1);
+    CHECK(strcmp(problem.statement, "MoveJoint(0,0,170,0,0,0)") == 0);
+    CHECK(strstr(problem.description, "line 3, column 1: MoveJoint(0,0,170,0,0,0): ") == problem.description);
+    robotd_rbtscript_report_free(report);
+  }
+  robotd_rbtscript_report_free(NULL);
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_run_rbtscript(f->client, NULL, NULL, &report), "program_text is NULL");
+  options.device = "nowhere";
+  CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_run_rbtscript(f->client, "Delay(1)", &options, &report),
+             "robotd has no device 'nowhere'");
+  return true;
+}
+
+static void* raise_after_a_while(void* flag) {
+  sleep_ms(300);
+  *(volatile int*)flag = 1;
+  return NULL;
+}
+
+static bool rbtscript_runs_a_program_on_the_arm_until_its_end_or_a_stop(fixture* f) {
+  static const double kEnd[6] = {
+      0.17453292519943295, -1.0471975511965976, 1.7453292519943295, 0, 0.3490658503988659, 0};
+  robotd_rbtscript_report* report = NULL;
+  robotd_rbtscript_outcome outcome;
+  robotd_rbtscript_options options;
+  statements_seen seen = {0, 0, 0};
+  CHECK_OK(robotd_rbtscript_options_init(&options));
+  options.loops = 2;
+  options.on_statement = count_statement;
+  options.user_data = &seen;
+  CHECK_OK(
+      robotd_run_rbtscript(f->client, "MoveJoint(10,-60,100,0,20,0,t=2)\nDelay(0.1)\nLoop()\n", &options, &report));
+  CHECK_OK(robotd_rbtscript_report_outcome(report, &outcome));
+  CHECK(outcome.end == ROBOTD_RBTSCRIPT_LOOP_LIMIT && outcome.passes == 2 && outcome.problem_count == 0);
+  CHECK(seen.count >= 5 && seen.last_line == 3 && seen.last_pass == 2);
+  robotd_rbtscript_report_free(report);
+  CHECK(arm_is_at(f->client, kEnd));
+
+  /* A long delay, ended by the stop flag from another thread: the arm stays where it was. */
+  volatile int stop = 0;
+  pthread_t raiser;
+  CHECK_OK(robotd_rbtscript_options_init(&options));
+  options.stop = &stop;
+  CHECK(pthread_create(&raiser, NULL, raise_after_a_while, (void*)&stop) == 0);
+  const robotd_status status =
+      robotd_run_rbtscript(f->client, "Delay(30)\nMoveJoint(0,0,0,0,0,0)\n", &options, &report);
+  pthread_join(raiser, NULL);
+  CHECK_OK(status);
+  CHECK_OK(robotd_rbtscript_report_outcome(report, &outcome));
+  CHECK(outcome.end == ROBOTD_RBTSCRIPT_STOPPED);
+  robotd_rbtscript_report_free(report);
+  CHECK(arm_is_at(f->client, kEnd));
+  return true;
+}
+
 typedef struct test_case {
   const char* name;
   bool (*run)(fixture* f);
@@ -875,6 +1066,13 @@ static const test_case kCases[] = {
      control_loop_pd_moves_the_arm_and_robotd_counts_the_answers, false},
     {"closed_loop_arguments_are_checked", closed_loop_arguments_are_checked, false},
     {"example_pd_program_runs_the_law", example_pd_program_runs_the_law, false},
+    {"planned_moves_bring_the_arm_and_its_tool_to_their_goals", planned_moves_bring_the_arm_and_its_tool_to_their_goals,
+     false},
+    {"planned_move_arguments_are_checked", planned_move_arguments_are_checked, false},
+    {"rbtscript_reports_problems_with_their_line_and_moves_nothing",
+     rbtscript_reports_problems_with_their_line_and_moves_nothing, false},
+    {"rbtscript_runs_a_program_on_the_arm_until_its_end_or_a_stop",
+     rbtscript_runs_a_program_on_the_arm_until_its_end_or_a_stop, false},
 };
 
 static const test_case* find_case(const char* name) {

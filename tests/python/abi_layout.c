@@ -68,6 +68,28 @@ int main(void) {
           FIELD(robotd_session_info, ticks_unanswered), FIELD(robotd_session_info, command_success_rate),
           FIELD(robotd_session_info, min_command_success_rate), FIELD(robotd_session_info, on_low_success_rate),
           FIELD(robotd_session_info, success_rate_low)));
+  STRUCT(robotd_move_options, (FIELD(robotd_move_options, duration_s), FIELD(robotd_move_options, speed_percent),
+                               FIELD(robotd_move_options, acceleration_percent), FIELD(robotd_move_options, shape),
+                               FIELD(robotd_move_options, stop)));
+  STRUCT(robotd_move_report, (FIELD(robotd_move_report, stopped), FIELD(robotd_move_report, commands_sent),
+                              FIELD(robotd_move_report, fraction_done), FIELD(robotd_move_report, joint_count),
+                              FIELD(robotd_move_report, last_measured), FIELD(robotd_move_report, summary)));
+  STRUCT(robotd_pose, (FIELD(robotd_pose, position_m), FIELD(robotd_pose, angles_rad)));
+  STRUCT(robotd_rbtscript_options,
+         (FIELD(robotd_rbtscript_options, device), FIELD(robotd_rbtscript_options, dry_run),
+          FIELD(robotd_rbtscript_options, loops), FIELD(robotd_rbtscript_options, stop),
+          FIELD(robotd_rbtscript_options, on_statement), FIELD(robotd_rbtscript_options, user_data),
+          FIELD(robotd_rbtscript_options, session_timeout_ms)));
+  STRUCT(robotd_rbtscript_problem,
+         (FIELD(robotd_rbtscript_problem, line), FIELD(robotd_rbtscript_problem, column),
+          FIELD(robotd_rbtscript_problem, statement), FIELD(robotd_rbtscript_problem, message),
+          FIELD(robotd_rbtscript_problem, description)));
+  STRUCT(robotd_rbtscript_outcome,
+         (FIELD(robotd_rbtscript_outcome, device), FIELD(robotd_rbtscript_outcome, syntax_errors),
+          FIELD(robotd_rbtscript_outcome, problem_count), FIELD(robotd_rbtscript_outcome, moves_planned),
+          FIELD(robotd_rbtscript_outcome, pass_seconds), FIELD(robotd_rbtscript_outcome, end),
+          FIELD(robotd_rbtscript_outcome, statements_run), FIELD(robotd_rbtscript_outcome, passes),
+          FIELD(robotd_rbtscript_outcome, failure)));
   printf("}\n");
   return 0;
 }

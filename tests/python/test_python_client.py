@@ -2,6 +2,7 @@
 DDS domain of its own. CTest runs each TestCase as python.<TestCase> (tests/python/CMakeLists.txt)
 with PYTHONPATH, ROBOTD_C_LIBRARY, ROBOTD_BINARY, ROBOTD_ABI_LAYOUT and ROBOTD_PYTHON_EXAMPLE set."""
 import json
+import math
 import os
 import subprocess
 import sys
@@ -31,7 +32,11 @@ class AbiLayoutTest(unittest.TestCase):
                    "robotd_session_request": _native.SessionRequest, "robotd_command": _native.Command,
                    "robotd_joint_state": _native.JointStateStruct,
                    "robotd_device_status": _native.DeviceStatusStruct, "robotd_tick_state": _native.TickStateStruct,
-                   "robotd_session_info": _native.SessionInfoStruct}
+                   "robotd_session_info": _native.SessionInfoStruct, "robotd_move_options": _native.MoveOptions,
+                   "robotd_move_report": _native.MoveReportStruct, "robotd_pose": _native.Pose,
+                   "robotd_rbtscript_options": _native.RbtscriptOptions,
+                   "robotd_rbtscript_problem": _native.RbtscriptProblemStruct,
+                   "robotd_rbtscript_outcome": _native.RbtscriptOutcomeStruct}
         self.assertEqual(set(layout), set(mirrors))
         for name, mirror in mirrors.items():
             with self.subTest(struct=name):
@@ -284,6 +289,104 @@ class ClosedLoopTest(unittest.TestCase):
                 self.assertGreater(count, 0)
                 with self.assertRaises(robotd.Refused):
                     session.next_tick(timeout=1.0)
+
+
+class PlannedMotionTest(unittest.TestCase):
+    """robotd.run_rbtscript and session.move_joints / move_cartesian: planned in this process on the
+    test arm, which plans as a PAROL6, and streamed through a real robotd."""
+
+    # Two postures clear of the PAROL6's singularities, and the tool poses its model puts them at
+    # (kinematics::tool_pose and pose_of; as tests/c/c_api_test.c).
+    POSTURE_A = (0.3, -1.4, 2.0, -0.4, 0.6, 0.8)
+    POSTURE_B = (0.4, -1.3, 1.9, -0.3, 0.7, 0.9)
+    POSE_A = (0.205354116, 0.069758867, 0.113302291, 2.473519361, 0.843256677, -3.140308032)
+    POSE_B = (0.175020425, 0.090879026, 0.084637194, 2.104167985, 0.749339420, -3.030329488)
+    PROGRAM_END = tuple(math.radians(d) for d in (10, -60, 100, 0, 20, 0))
+
+    @classmethod
+    def setUpClass(cls):
+        arm = sim_arm()
+        arm["params"]["kinematic_model"] = "parol6"
+        cls.daemon = RobotdDaemon(ROBOTD, [arm]).__enter__()
+        cls.daemon.wait_until_serving()
+        cls.client = robotd.Client(cls.daemon.domain_id, node_name="python_test")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.daemon.__exit__(None, None, None)
+
+    def assert_arm_at(self, target):
+        position = self.client.joint_state("arm").position
+        for joint, (q, expected) in enumerate(zip(position, target)):
+            self.assertAlmostEqual(q, expected, delta=0.005, msg=f"joint {joint}")
+
+    def test_a_dry_run_reports_a_problem_with_its_line_and_moves_nothing(self):
+        start = self.client.joint_state("arm").position
+        report = robotd.run_rbtscript(self.client, "Begin()\nMoveJoint(10,-60,100,0,20,0,t=2)\n"
+                                      "MoveJoint(0,0,200,0,0,0)\nEnd()\n", device="arm", dry_run=True)
+        self.assertEqual((report.device, report.syntax_errors, report.end), ("arm", False, robotd.RunEnd.NOT_RUN))
+        self.assertEqual(report.moves_planned, 1)
+        [problem] = report.problems
+        self.assertEqual((problem.line, problem.column, problem.statement), (3, 1, "MoveJoint(0,0,200,0,0,0)"))
+        self.assertTrue(str(problem).startswith("line 3, column 1: MoveJoint(0,0,200,0,0,0): "), str(problem))
+        self.assert_arm_at(start)
+
+    def test_a_syntax_error_names_its_line_and_what_was_expected(self):
+        report = robotd.run_rbtscript(self.client, "Delay(1)\nMoveJoint(1,2\n")
+        self.assertTrue(report.syntax_errors)
+        [problem] = report.problems
+        self.assertEqual(problem.line, 2)
+        self.assertIn("expected", problem.message)
+        with self.assertRaisesRegex(ValueError, "loops is 0: expected a number of passes"):
+            robotd.run_rbtscript(self.client, "Delay(1)", loops=0)
+        with self.assertRaisesRegex(robotd.InvalidArgument, "robotd has no device 'nowhere'"):
+            robotd.run_rbtscript(self.client, "Delay(1)", device="nowhere")
+
+    def test_a_program_runs_on_the_arm_statement_by_statement(self):
+        seen = []
+        report = robotd.run_rbtscript(self.client, "MoveJoint(10,-60,100,0,20,0,t=2)\nDelay(0.1)\nLoop()\n",
+                                      loops=2, on_statement=lambda line, text, pass_number: seen.append(
+                                          (line, pass_number)))
+        self.assertEqual((report.end, report.passes, report.problems), (robotd.RunEnd.LOOP_LIMIT, 2, ()))
+        self.assertEqual(seen[:3], [(1, 1), (2, 1), (3, 1)])
+        self.assertIn((3, 2), seen)
+        self.assert_arm_at(self.PROGRAM_END)
+
+    def test_the_stop_event_ends_a_program_with_the_arm_held(self):
+        robotd.run_rbtscript(self.client, "MoveJoint(10,-60,100,0,20,0,t=2)\n")
+        stop = threading.Event()
+        threading.Timer(0.3, stop.set).start()
+        report = robotd.run_rbtscript(self.client, "Delay(30)\nMoveJoint(0,0,0,0,0,0)\n", stop=stop)
+        self.assertEqual(report.end, robotd.RunEnd.STOPPED)
+        self.assert_arm_at(self.PROGRAM_END)
+
+    def test_joint_and_cartesian_moves_bring_the_arm_and_its_tool_to_their_goals(self):
+        with self.client.session(device="arm", timeout=2.0) as session:
+            report = session.move_joints(self.POSTURE_A, v=60, a=60)
+            self.assertFalse(report.stopped)
+            self.assertEqual(report.fraction_done, 1.0)
+            self.assertIn("arrived", report.summary)
+            self.assert_arm_at(self.POSTURE_A)
+            session.move_cartesian(self.POSE_B, t=1.0)
+            self.assert_arm_at(self.POSTURE_B)
+            session.move_cartesian(self.POSE_A, t=1.0, func="trap", line=True)
+            self.assert_arm_at(self.POSTURE_A)
+
+    def test_move_arguments_are_checked_before_anything_moves(self):
+        with self.client.session(device="arm", timeout=2.0) as session:
+            with self.assertRaisesRegex(robotd.InvalidArgument, "2 joint value\\(s\\); device 'arm' has 6 joints"):
+                session.move_joints([0.1, 0.2])
+            with self.assertRaisesRegex(ValueError, "t is -1: expected seconds"):
+                session.move_joints(self.POSTURE_A, t=-1)
+            with self.assertRaisesRegex(ValueError, "'bogus' is not a Shape"):
+                session.move_joints(self.POSTURE_A, func="bogus")
+            with self.assertRaisesRegex(ValueError, "pose .*: 3 values, expected 6"):
+                session.move_cartesian((0.2, 0.0, 0.1))
+            with self.assertRaisesRegex(ValueError, "a straight line takes t and func only"):
+                session.move_cartesian(self.POSE_A, v=50, line=True)
+            with self.assertRaises(robotd.InvalidArgument):
+                session.move_cartesian((2.0, 0.0, 0.3, 0.0, 0.0, 0.0))  # out of the PAROL6's reach
 
 
 class ExampleTest(unittest.TestCase):

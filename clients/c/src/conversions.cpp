@@ -28,17 +28,6 @@ static_assert(ROBOTD_DEVICE_STOPPED == static_cast<int>(DeviceState::kStopped));
 static_assert(ROBOTD_LOW_RATE_WARN == static_cast<int>(LowRateAction::kWarn));
 static_assert(ROBOTD_LOW_RATE_FALLBACK == static_cast<int>(LowRateAction::kFallback));
 
-template <std::size_t kCapacity>
-void copy_text(std::string_view text, char (&field)[kCapacity]) {
-  std::size_t length = std::min(text.size(), kCapacity - 1);
-  // Never cut inside a UTF-8 sequence: step back over continuation bytes (10xxxxxx).
-  if (length < text.size()) {
-    while (length > 0 && (static_cast<unsigned char>(text[length]) & 0xC0U) == 0x80U) --length;
-  }
-  text.copy(field, length);
-  field[length] = '\0';
-}
-
 // Up to `count` values; a shorter vector leaves the rest as they are (zero).
 void copy_values(const std::vector<double>& values, double (&field)[ROBOTD_MAX_JOINTS], std::size_t count) {
   std::copy_n(values.begin(), std::min(values.size(), count), field);

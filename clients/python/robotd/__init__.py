@@ -1,5 +1,6 @@
-"""robotd for Python: sessions, commands, joint states, safety and device operations, over the
-robotd C API (librobotd_c) with ctypes. docs/clients.md ("Python") is the guide.
+"""robotd for Python: sessions, commands, joint states, safety and device operations, and motion
+planned here (run_rbtscript, Session.move_joints, Session.move_cartesian), over the robotd C API
+(librobotd_c) with ctypes. docs/clients.md ("Python") is the guide.
 
     import robotd
 
@@ -16,7 +17,9 @@ _EXPORTS = {
     "C_API_VERSION": "._native",
     "Behavior": ".types", "DeviceInfo": ".types", "DeviceState": ".types", "DeviceStatus": ".types",
     "JointState": ".types", "LowRateAction": ".types", "Mode": ".types", "SessionInfo": ".types",
-    "TickState": ".types",
+    "TickState": ".types", "Shape": ".types", "RunEnd": ".types", "MoveReport": ".types",
+    "RbtscriptProblem": ".types", "RbtscriptReport": ".types",
+    "run_rbtscript": ".motion",
     "Client": ".client",
     "Session": ".session",
     "Subscription": ".subscription",

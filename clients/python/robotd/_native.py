@@ -2,6 +2,7 @@
 conversion of its results into this package's types. Nothing here is public."""
 import ctypes
 import os
+import threading
 from ctypes import POINTER, Structure, c_bool, c_char, c_char_p, c_double, c_float, c_int, c_int32, c_int64
 from ctypes import c_size_t, c_uint64, c_void_p
 
@@ -75,6 +76,39 @@ class SessionInfoStruct(Structure):
                 ("success_rate_low", c_bool)]
 
 
+class MoveOptions(Structure):
+    _fields_ = [("duration_s", c_double), ("speed_percent", c_double), ("acceleration_percent", c_double),
+                ("shape", _Enum), ("stop", POINTER(c_int))]
+
+
+class MoveReportStruct(Structure):
+    _fields_ = [("stopped", c_bool), ("commands_sent", c_uint64), ("fraction_done", c_double),
+                ("joint_count", c_size_t), ("last_measured", _Doubles), ("summary", _Text)]
+
+
+class Pose(Structure):
+    _fields_ = [("position_m", c_double * 3), ("angles_rad", c_double * 3)]
+
+
+RbtscriptProgress = ctypes.CFUNCTYPE(None, c_size_t, c_char_p, c_uint64, c_void_p)
+
+
+class RbtscriptOptions(Structure):
+    _fields_ = [("device", c_char_p), ("dry_run", c_bool), ("loops", c_uint64), ("stop", POINTER(c_int)),
+                ("on_statement", RbtscriptProgress), ("user_data", c_void_p), ("session_timeout_ms", c_int32)]
+
+
+class RbtscriptProblemStruct(Structure):
+    _fields_ = [("line", c_size_t), ("column", c_size_t), ("statement", c_char_p), ("message", c_char_p),
+                ("description", c_char_p)]
+
+
+class RbtscriptOutcomeStruct(Structure):
+    _fields_ = [("device", _Name), ("syntax_errors", c_bool), ("problem_count", c_size_t),
+                ("moves_planned", c_size_t), ("pass_seconds", c_double), ("end", _Enum),
+                ("statements_run", c_uint64), ("passes", c_uint64), ("failure", RbtscriptProblemStruct)]
+
+
 JointStateCallback = ctypes.CFUNCTYPE(None, POINTER(JointStateStruct), c_void_p)
 DeviceStatusCallback = ctypes.CFUNCTYPE(None, POINTER(DeviceStatusStruct), c_void_p)
 
@@ -118,6 +152,16 @@ _PROTOTYPES = {
     # The result is a char* the library allocated: kept as a void pointer, so that it can be freed.
     "robotd_device_call": (_Status, [_Handle, c_char_p, c_char_p, c_char_p, c_int32, POINTER(c_void_p)]),
     "robotd_free_string": (None, [c_void_p]),
+    "robotd_move_options_init": (_Status, [POINTER(MoveOptions)]),
+    "robotd_session_move_joints": (_Status, [_Handle, _Handle, POINTER(c_double), c_size_t, POINTER(MoveOptions),
+                                             POINTER(MoveReportStruct)]),
+    "robotd_session_move_cartesian": (_Status, [_Handle, _Handle, POINTER(Pose), _Enum, POINTER(MoveOptions),
+                                                POINTER(MoveReportStruct)]),
+    "robotd_rbtscript_options_init": (_Status, [POINTER(RbtscriptOptions)]),
+    "robotd_run_rbtscript": (_Status, [_Handle, c_char_p, POINTER(RbtscriptOptions), POINTER(_Handle)]),
+    "robotd_rbtscript_report_outcome": (_Status, [_Handle, POINTER(RbtscriptOutcomeStruct)]),
+    "robotd_rbtscript_report_problem": (_Status, [_Handle, c_size_t, POINTER(RbtscriptProblemStruct)]),
+    "robotd_rbtscript_report_free": (None, [_Handle]),
 }
 
 
@@ -178,6 +222,35 @@ def check(status):
     message = text(lib.robotd_last_error())
     exception = errors.BY_STATUS.get(status, errors.RobotdError)
     raise exception(text(lib.robotd_status_name(status)), message)
+
+
+def stoppable(call, stop_flag, stop=None):
+    """Runs call() (a library call and its check()) on a thread of its own and waits for it here,
+    so that Ctrl-C (KeyboardInterrupt) or `stop` (a threading.Event) can set `stop_flag` (the C
+    int the library watches): the library then ends what it is doing with the arm held. Returns
+    call()'s result or raises its exception; KeyboardInterrupt is raised again after the stop."""
+    outcome = {}
+
+    def work():
+        try:
+            outcome["value"] = call()
+        except BaseException as error:  # handed to the waiting thread
+            outcome["error"] = error
+
+    worker = threading.Thread(target=work, name="robotd-planned-motion", daemon=True)
+    worker.start()
+    try:
+        while worker.is_alive():
+            worker.join(0.05)
+            if stop is not None and stop.is_set():
+                stop_flag.value = 1
+    except KeyboardInterrupt:
+        stop_flag.value = 1
+        worker.join()
+        raise
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["value"]
 
 
 def optional_text(value):

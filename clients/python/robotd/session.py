@@ -1,6 +1,6 @@
 """An exclusive control session on some motors of one device."""
 import time
-from ctypes import byref, c_char_p, c_float, c_int, c_int32, c_size_t, c_void_p
+from ctypes import byref, c_char_p, c_double, c_float, c_int, c_int32, c_size_t, c_void_p
 
 from . import _native
 from ._native import check, floats, int32s, lib, milliseconds, optional_text, pointer
@@ -160,6 +160,43 @@ class Session:
         raw = _native.SessionInfoStruct()
         check(lib.robotd_session_get_info(self._live_handle(), milliseconds(timeout, "timeout"), byref(raw)))
         return _native.session_info(raw)
+
+    def move_joints(self, target, t=None, v=None, a=None, func=None, *, stop=None):
+        """Moves every joint of the device to `target` (rad, one per joint), planned here on the
+        device's limits and streamed through the session until every joint is within 0.1° of it;
+        returns a MoveReport. RBTscript's timing: `t` seconds overrides `v` and `a` (percent of the
+        leading joint's maximum speed and acceleration); `func` "poly" or "trap" (default: the
+        polynomial with t, else the trapezoid); none: a conservative trapezoid. The session must be
+        a POSITION session on every motor of its device. Ctrl-C or `stop` (a threading.Event) end
+        the move with the arm held (MoveReport.stopped). Raises InvalidArgument before anything
+        moves for a target out of the limits or a move too fast, Refused on an e-stop or a fault."""
+        from . import motion
+        values = motion.doubles(target, "target")
+        handle = self._live_handle()
+
+        def call(options, report):
+            check(lib.robotd_session_move_joints(self._client.handle, handle, values, len(values), byref(options),
+                                                 byref(report)))
+
+        return motion.move(call, (t, v, a, func), stop)
+
+    def move_cartesian(self, pose, t=None, v=None, a=None, func=None, *, line=False, stop=None):
+        """Moves the tool of the device's arm model to `pose`: (x, y, z) in m and the arm's three
+        angles in rad (its vendor's Euler convention), in the base frame. `line=False`: IK, then a
+        joint move (RBTscript MovePose); `line=True`: a straight line, IK along it, refused before
+        a singularity or a limit (MoveCart; takes only t and func). Otherwise as move_joints."""
+        from . import motion
+        values = motion.doubles(pose, "pose (x, y, z in m, three angles in rad)", 6)
+        goal = _native.Pose((c_double * 3)(*values[:3]), (c_double * 3)(*values[3:]))
+        handle = self._live_handle()
+        if line and (v is not None or a is not None):
+            raise ValueError("a straight line takes t and func only, not v or a")
+
+        def call(options, report):
+            check(lib.robotd_session_move_cartesian(self._client.handle, handle, byref(goal), 1 if line else 0,
+                                                    byref(options), byref(report)))
+
+        return motion.move(call, (t, v, a, func), stop)
 
     def keepalive(self):
         """Renews the session without moving anything."""

@@ -134,3 +134,58 @@ class SessionInfo:
     min_command_success_rate: float  # 0 = none
     on_low_success_rate: LowRateAction
     success_rate_low: bool  # below the minimum now
+
+
+class Shape(_ParsedEnum):
+    """A planned move's velocity profile (RBTscript's func)."""
+    DEFAULT = 0  # RBTscript's: the polynomial with t, else the trapezoid
+    POLY = 1  # a quintic: zero speed and acceleration at both ends
+    TRAP = 2  # a trapezoid; with t in thirds (accelerate, cruise, decelerate)
+
+
+class RunEnd(_ParsedEnum):
+    """How an RBTscript run ended."""
+    NOT_RUN = 0  # a dry run, or there were problems: nothing was sent to the device
+    END_OF_PROGRAM = 1  # ran past the last statement
+    END = 2  # reached End()
+    LOOP_LIMIT = 3  # reached Loop() after `loops` passes
+    STOPPED = 4  # stopped (Ctrl-C, the stop event): the arm holds where it was
+    FAILED = 5  # a statement failed (an e-stop, a refused op): see RbtscriptReport.failure
+
+
+@dataclass(frozen=True)
+class MoveReport:
+    """How a planned move (Session.move_joints, move_cartesian) ended."""
+    stopped: bool  # the stop event or Ctrl-C ended it: the arm holds where it was measured then
+    commands_sent: int
+    fraction_done: float  # of the planned trajectory, 0..1
+    last_measured: tuple  # rad, where the joints were measured at the end
+    summary: str
+
+
+@dataclass(frozen=True)
+class RbtscriptProblem:
+    """A syntax error, what a dry run found, or why a statement failed."""
+    line: int  # 1-based
+    column: int  # 1-based, in bytes
+    statement: str  # as written ("" for a syntax error)
+    message: str
+    description: str  # all of it: "line 3, column 1: MoveJoint(0,0,170,0,0,0): ..."
+
+    def __str__(self):
+        return self.description
+
+
+@dataclass(frozen=True)
+class RbtscriptReport:
+    """What robotd.run_rbtscript did. `problems` (syntax errors, or the dry run's findings) mean
+    nothing was sent to the device."""
+    device: str  # "" when there were syntax errors
+    syntax_errors: bool
+    problems: tuple  # of RbtscriptProblem, in line order
+    moves_planned: int  # by the dry run, on one pass
+    pass_seconds: float  # one pass's moves and delays, as planned
+    end: RunEnd
+    statements_run: int
+    passes: int
+    failure: object  # an RbtscriptProblem when end is FAILED, else None

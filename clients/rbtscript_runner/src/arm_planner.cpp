@@ -34,11 +34,11 @@ motion::MoveTiming timing_of(const CartesianMotion& motion) {
   return timing_of(joint);
 }
 
-Eigen::Isometry3d transform_of(const kinematics::ArmModel& model, const Pose& pose) {
+kinematics::EulerPose si_pose(const Pose& pose) {
   kinematics::EulerPose euler;
   euler.position_m = {pose.x_mm * kMPerMm, pose.y_mm * kMPerMm, pose.z_mm * kMPerMm};
   euler.angles_rad = {pose.rx_deg * kRadPerDeg, pose.ry_deg * kRadPerDeg, pose.rz_deg * kRadPerDeg};
-  return kinematics::transform_of(model.euler, euler);
+  return euler;
 }
 
 Result<PlannedMove> planned(Result<motion::Trajectory> plan, Tracking tracking) {
@@ -88,6 +88,26 @@ Result<const kinematics::ArmModel*> ArmPlanner::model_for(const std::string& sta
                  device_.driver + ") names no arm model; use MoveJoint");
 }
 
+Result<motion::Trajectory> ArmPlanner::plan_joints(const motion::Joints& from, const motion::Joints& to_rad,
+                                                   const motion::MoveTiming& timing) const {
+  if (to_rad.size() != joint_count()) {
+    return invalid("the target gives " + std::to_string(to_rad.size()) + " joint value(s); device '" + device_.name +
+                   "' has " + std::to_string(joint_count()) + " joints");
+  }
+  return motion::plan_joint_move(from, to_rad, timing, limits_, kPlanningStepS);
+}
+
+Result<motion::Trajectory> ArmPlanner::plan_pose(const motion::Joints& from, const kinematics::EulerPose& goal,
+                                                 const motion::MoveTiming& timing, bool straight_line) const {
+  auto model = model_for(straight_line ? "a straight-line move" : "a move to a pose");
+  if (!model) return model.error();
+  const Eigen::Isometry3d transform = kinematics::transform_of(model.value()->euler, goal);
+  if (straight_line) {
+    return motion::plan_line_move(*model.value(), from, transform, timing, limits_, kPlanningStepS);
+  }
+  return motion::plan_pose_move(*model.value(), from, transform, timing, limits_, kPlanningStepS);
+}
+
 Result<PlannedMove> ArmPlanner::plan(const MoveJoint& statement, const motion::Joints& from) const {
   if (statement.joints_deg.size() != joint_count()) {
     return invalid("MoveJoint gives " + std::to_string(statement.joints_deg.size()) + " joint value(s); device '" +
@@ -95,32 +115,25 @@ Result<PlannedMove> ArmPlanner::plan(const MoveJoint& statement, const motion::J
   }
   motion::Joints to;
   for (const double degrees : statement.joints_deg) to.push_back(degrees * kRadPerDeg);
-  return planned(motion::plan_joint_move(from, to, timing_of(statement.motion), limits_, kPlanningStepS),
-                 statement.motion.tracking);
+  return planned(plan_joints(from, to, timing_of(statement.motion)), statement.motion.tracking);
 }
 
 Result<PlannedMove> ArmPlanner::plan(const MovePose& statement, const motion::Joints& from) const {
-  auto model = model_for("MovePose");
-  if (!model) return model.error();
-  const Eigen::Isometry3d goal = transform_of(*model.value(), statement.pose);
-  return planned(
-      motion::plan_pose_move(*model.value(), from, goal, timing_of(statement.motion), limits_, kPlanningStepS),
-      statement.motion.tracking);
+  if (auto model = model_for("MovePose"); !model) return model.error();
+  return planned(plan_pose(from, si_pose(statement.pose), timing_of(statement.motion), false),
+                 statement.motion.tracking);
 }
 
 Result<PlannedMove> ArmPlanner::plan(const MoveCart& statement, const motion::Joints& from) const {
-  auto model = model_for("MoveCart");
-  if (!model) return model.error();
-  const Eigen::Isometry3d goal = transform_of(*model.value(), statement.pose);
-  return planned(
-      motion::plan_line_move(*model.value(), from, goal, timing_of(statement.motion), limits_, kPlanningStepS),
-      statement.motion.tracking);
+  if (auto model = model_for("MoveCart"); !model) return model.error();
+  return planned(plan_pose(from, si_pose(statement.pose), timing_of(statement.motion), true),
+                 statement.motion.tracking);
 }
 
 Result<PlannedMove> ArmPlanner::plan(const MoveCartRelTrf& statement, const motion::Joints& from) const {
   auto model = model_for("MoveCartRelTRF");
   if (!model) return model.error();
-  const Eigen::Isometry3d delta = transform_of(*model.value(), statement.delta);
+  const Eigen::Isometry3d delta = kinematics::transform_of(model.value()->euler, si_pose(statement.delta));
   return planned(motion::plan_tool_relative_move(*model.value(), from, delta, timing_of(statement.motion), limits_,
                                                  kPlanningStepS),
                  statement.motion.tracking);

@@ -1,18 +1,10 @@
 #include "device_executor.hpp"
 
-#include <chrono>
-#include <numbers>
 #include <utility>
 
+#include "robotd/motion/session_moves.hpp"
+
 namespace robotd::rbtscript::detail {
-namespace {
-
-// A move is done once every joint is this close to its goal (0.1°), and fails if that takes
-// longer than the timeout after the last sample.
-constexpr double kArrivalToleranceRad = 0.1 * std::numbers::pi / 180.0;
-constexpr std::chrono::milliseconds kArrivalTimeout{3000};
-
-}  // namespace
 
 DeviceExecutor::DeviceExecutor(ArmSession& arm, const ArmPlanner& planner, const motion::DeviceIo& io,
                                const std::atomic<bool>& stop, motion::Joints start)
@@ -36,7 +28,7 @@ Result<void> DeviceExecutor::follow(const Result<PlannedMove>& move) {
   if (move.value().tracking == Tracking::kSpeedOnly) {
     options.tracking = motion::Tracking::kSpeedOnly;  // misses its goal by design: no arrival to wait for
   } else {
-    options.arrival = motion::Arrival{kArrivalToleranceRad, kArrivalTimeout};
+    options.arrival = motion::Arrival{motion::kMoveArrivalToleranceRad, motion::kMoveArrivalTimeout};
   }
   const motion::SampledTrajectory samples{planned.dt_s, planned.positions, planned.velocities};
   auto measured = stream(samples, options);

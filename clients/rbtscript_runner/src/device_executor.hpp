@@ -15,8 +15,8 @@ namespace robotd::rbtscript::detail {
 
 class DeviceExecutor final : public Executor {
  public:
-  DeviceExecutor(ArmSession& arm, const ArmPlanner& planner, const motion::DeviceIo& io,
-                 const std::atomic<bool>& stop, motion::Joints start);
+  DeviceExecutor(ArmSession& arm, const ArmPlanner& planner, const motion::DeviceIo& io, const std::atomic<bool>& stop,
+                 motion::Joints start);
 
   Result<void> move_joint(const MoveJoint& statement) override { return follow(planner_.plan(statement, held_)); }
   Result<void> move_pose(const MovePose& statement) override { return follow(planner_.plan(statement, held_)); }

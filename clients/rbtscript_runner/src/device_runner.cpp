@@ -7,49 +7,19 @@
 #include "arm_session.hpp"
 #include "checking_executor.hpp"
 #include "device_executor.hpp"
+#include "device_lookup.hpp"
 #include "robotd/motion/device_io.hpp"
 #include "robotd/rbtscript/arm_planner.hpp"
 
 namespace robotd::rbtscript {
-namespace {
-
-constexpr std::chrono::milliseconds kJointStateWait{2000};
-
-Result<DeviceInfo> find_device(Client& client, const std::string& name) {
-  auto devices = client.list_devices();
-  if (!devices) return devices.error();
-  std::string names;
-  for (const DeviceInfo& device : devices.value()) {
-    if (device.name == name || (name.empty() && devices.value().size() == 1)) return device;
-    names += (names.empty() ? "" : ", ") + device.name;
-  }
-  if (name.empty()) return Error{ErrorCode::kInvalidArgument, "robotd runs several devices (" + names + "); name one"};
-  return Error{ErrorCode::kInvalidArgument, "robotd has no device '" + name + "' (it has: " + names + ")"};
-}
-
-// The arm's joints (the planner's) where the device reports them.
-Result<motion::Joints> measured_joints(Client& client, const DeviceInfo& device, std::size_t arm_joints) {
-  auto state = client.next_joint_state(device.name, kJointStateWait);
-  if (!state) return state.error();
-  if (state.value().position.size() != device.joint_names.size()) {
-    return Error{ErrorCode::kRefused, "device '" + device.name + "' published " +
-                                          std::to_string(state.value().position.size()) + " joint positions for " +
-                                          std::to_string(device.joint_names.size()) + " joints"};
-  }
-  motion::Joints joints = std::move(state).value().position;
-  joints.resize(arm_joints);
-  return joints;
-}
-
-}  // namespace
 
 Result<DeviceRunReport> run_on_device(Client& client, const Program& program, const DeviceRunOptions& options) {
-  auto device = find_device(client, options.device);
+  auto device = detail::find_device(client, options.device);
   if (!device) return device.error();
   auto planner = ArmPlanner::for_device(device.value());
   if (!planner) return planner.error();
   const motion::DeviceIo io(device.value());
-  auto start = measured_joints(client, device.value(), planner.value().joint_count());
+  auto start = detail::measured_joints(client, device.value(), planner.value().joint_count());
   if (!start) return start.error();
 
   DeviceRunReport report;
@@ -74,7 +44,7 @@ Result<DeviceRunReport> run_on_device(Client& client, const Program& program, co
   detail::ArmSession arm(client, request);
   if (auto opened = arm.open(); !opened) return opened.error();
   // The arm may have moved since the dry run looked: plan the first move from where it is now.
-  auto now = measured_joints(client, device.value(), planner.value().joint_count());
+  auto now = detail::measured_joints(client, device.value(), planner.value().joint_count());
   if (!now) return now.error();
   static const std::atomic<bool> kNeverStop{false};
   const std::atomic<bool>& stop = options.stop != nullptr ? *options.stop : kNeverStop;

@@ -377,6 +377,143 @@ typedef struct robotd_session_info {
 ROBOTD_API robotd_status robotd_session_get_info(robotd_session* session, int32_t timeout_ms,
                                                  robotd_session_info* info);
 
+/* ---- Planned moves --------------------------------------------------------------------- */
+
+/* Moves planned in this process (robotd/motion/session_moves.hpp): from the joints robotd
+ * measures, on the device's joint limits and the arm model its driver names
+ * (robotd_device_info.kinematic_model), streamed through the session at the device's rate until
+ * every joint is within 0.1° of its goal (at most 3 s after the plan's end). The call returns
+ * when the move has arrived, was stopped, or failed. The timing rules are RBTscript's
+ * (docs/rbtscript.md): t overrides v and a; v and a are percent of the leading joint's maximum;
+ * with t the polynomial unless told the trapezoid; without any, a conservative trapezoid. */
+
+typedef enum robotd_move_shape ROBOTD_ENUM_BASE {
+  ROBOTD_SHAPE_DEFAULT = 0,    /* RBTscript's: the polynomial with t, else the trapezoid */
+  ROBOTD_SHAPE_POLYNOMIAL = 1, /* "poly": a quintic, zero speed and acceleration at both ends */
+  ROBOTD_SHAPE_TRAPEZOID = 2   /* "trap": with t in thirds (accelerate, cruise, decelerate) */
+} robotd_move_shape;
+
+typedef enum robotd_cartesian_path ROBOTD_ENUM_BASE {
+  ROBOTD_PATH_JOINT = 0, /* IK of the goal, then a joint move (RBTscript MovePose): the tool's path is not a line */
+  ROBOTD_PATH_LINE = 1   /* the tool on a straight line (MoveCart), IK along it; stops before a singularity */
+} robotd_cartesian_path;
+
+typedef struct robotd_move_options {
+  double duration_s;           /* t: > 0, overrides v and a; default 0 = not given */
+  double speed_percent;        /* v: (0, 100] of the leading joint's maximum speed; default 0 = not given */
+  double acceleration_percent; /* a: (0, 100] of its maximum acceleration; default 0 = not given */
+  robotd_move_shape shape;     /* func; default ROBOTD_SHAPE_DEFAULT */
+  const volatile int* stop;    /* default NULL; else non-zero (e.g. set by a signal handler or another thread)
+                                * ends the move with the arm held where it is; read every few ms */
+} robotd_move_options;
+
+typedef struct robotd_move_report {
+  bool stopped; /* the stop flag ended the move: the arm holds where it was measured then */
+  uint64_t commands_sent;
+  double fraction_done; /* of the planned trajectory, 0..1 */
+  size_t joint_count;
+  double last_measured[ROBOTD_MAX_JOINTS]; /* rad, where the joints were measured at the end */
+  char summary[ROBOTD_TEXT_CAPACITY];      /* e.g. "... arrived within 0.002 rad" */
+} robotd_move_report;
+
+/* A pose of the arm model's tool in the device's base frame: m, and the three angles of the arm's
+ * own Euler convention (as its vendor writes poses) in rad. */
+typedef struct robotd_pose {
+  double position_m[3];
+  double angles_rad[3];
+} robotd_pose;
+
+ROBOTD_API robotd_status robotd_move_options_init(robotd_move_options* options);
+/* Moves every joint of the session's device to target_rad (count = the device's joint count).
+ * The session must be in POSITION mode on every joint of its device (a request that names no
+ * motors); `client` is any client on robotd's domain (it reads the device's limits and state).
+ * options NULL = the defaults. ROBOTD_INVALID_ARGUMENT before anything moves for a target of the
+ * wrong size or outside the limits, a move too fast for the device, or such a session;
+ * ROBOTD_REFUSED on an e-stop, a fault or the end of the session mid-move; ROBOTD_TIMEOUT when
+ * the joints do not arrive. *report (may be NULL) is filled on success. */
+ROBOTD_API robotd_status robotd_session_move_joints(robotd_client* client, robotd_session* session,
+                                                    const double* target_rad, size_t count,
+                                                    const robotd_move_options* options, robotd_move_report* report);
+/* Moves the tool to *goal along `path`. A line takes only t and the shape. Fails as
+ * robotd_session_move_joints does, and with ROBOTD_INVALID_ARGUMENT (nothing moved) when the
+ * device names no arm model, the goal is out of reach, or the line meets a singularity or a limit. */
+ROBOTD_API robotd_status robotd_session_move_cartesian(robotd_client* client, robotd_session* session,
+                                                       const robotd_pose* goal, robotd_cartesian_path path,
+                                                       const robotd_move_options* options, robotd_move_report* report);
+
+/* ---- RBTscript -------------------------------------------------------------------------- */
+
+/* Runs an RBTscript program (docs/rbtscript.md) on a device, as robotctl run does: the text is
+ * parsed whole; a program without syntax errors is checked whole against the device (a dry run:
+ * every move planned on its limits and arm model, every Output and Gripper mapped to its ops);
+ * a program without problems then runs, unless only the dry run was asked for, in a POSITION
+ * session on every joint of the device, planned here and streamed through robotd. */
+
+typedef enum robotd_rbtscript_end ROBOTD_ENUM_BASE {
+  ROBOTD_RBTSCRIPT_NOT_RUN = 0,        /* a dry run, or there were problems: nothing was sent to the device */
+  ROBOTD_RBTSCRIPT_END_OF_PROGRAM = 1, /* ran past the last statement */
+  ROBOTD_RBTSCRIPT_END = 2,            /* reached End() */
+  ROBOTD_RBTSCRIPT_LOOP_LIMIT = 3,     /* reached Loop() after `loops` passes */
+  ROBOTD_RBTSCRIPT_STOPPED = 4,        /* the stop flag: the arm holds where it was */
+  ROBOTD_RBTSCRIPT_FAILED = 5          /* a statement failed (an e-stop, a refused op): see the outcome's failure */
+} robotd_rbtscript_end;
+
+/* Called before each statement of the run (not the dry run), on the calling thread. `statement`
+ * is valid only during the call. */
+typedef void (*robotd_rbtscript_progress)(size_t line, const char* statement, uint64_t pass, void* user_data);
+
+typedef struct robotd_rbtscript_options {
+  const char* device;                     /* NULL or "" = robotd's only device */
+  bool dry_run;                           /* true: only check the program; default false */
+  uint64_t loops;                         /* default 0 = Loop() runs until stopped; else passes at most */
+  const volatile int* stop;               /* default NULL; else non-zero ends the run with the arm held; read
+                                           * every few ms */
+  robotd_rbtscript_progress on_statement; /* default NULL */
+  void* user_data;                        /* passed to on_statement */
+  int32_t session_timeout_ms; /* default 2000: robotd damps (or holds) the arm this long after the last command
+                               * if this process dies */
+} robotd_rbtscript_options;
+
+typedef struct robotd_rbtscript_report robotd_rbtscript_report;
+
+/* One problem: a syntax error or what the dry run found. The strings live as long as the report. */
+typedef struct robotd_rbtscript_problem {
+  size_t line;             /* 1-based */
+  size_t column;           /* 1-based, in bytes */
+  const char* statement;   /* the statement as written ("" for a syntax error) */
+  const char* message;     /* what is wrong, e.g. "found ')', expected 6 pose values (...)" */
+  const char* description; /* all of it on one line: "line 3, column 1: MovePose(...): ..." */
+} robotd_rbtscript_problem;
+
+typedef struct robotd_rbtscript_outcome {
+  char device[ROBOTD_NAME_CAPACITY]; /* "" when there were syntax errors (no device was asked) */
+  bool syntax_errors;                /* the problems are syntax errors: the program was not checked further */
+  size_t problem_count;              /* robotd_rbtscript_report_problem 0 .. problem_count - 1 */
+  size_t moves_planned;              /* by the dry run, on one pass */
+  double pass_seconds;               /* one pass's moves and delays, as planned */
+  robotd_rbtscript_end end;
+  uint64_t statements_run; /* over all passes */
+  uint64_t passes;
+  robotd_rbtscript_problem failure; /* end == ROBOTD_RBTSCRIPT_FAILED: the statement and why; else zero */
+} robotd_rbtscript_outcome;
+
+ROBOTD_API robotd_status robotd_rbtscript_options_init(robotd_rbtscript_options* options);
+/* Parses, checks and (unless a dry run) runs `program_text` (options NULL = the defaults); the
+ * call returns when the program has ended, been stopped or failed. Syntax errors, the dry run's
+ * problems and a program that fails while running are not errors of the call: *report says what
+ * happened (free it with robotd_rbtscript_report_free). Fails (nothing moved) when robotd does
+ * not answer, the device is unknown or cannot be planned for, or the session is refused. */
+ROBOTD_API robotd_status robotd_run_rbtscript(robotd_client* client, const char* program_text,
+                                              const robotd_rbtscript_options* options,
+                                              robotd_rbtscript_report** report);
+ROBOTD_API robotd_status robotd_rbtscript_report_outcome(const robotd_rbtscript_report* report,
+                                                         robotd_rbtscript_outcome* outcome);
+/* Problem `index` (< the outcome's problem_count), in line order. */
+ROBOTD_API robotd_status robotd_rbtscript_report_problem(const robotd_rbtscript_report* report, size_t index,
+                                                         robotd_rbtscript_problem* problem);
+/* Frees the report and its strings. NULL is allowed. */
+ROBOTD_API void robotd_rbtscript_report_free(robotd_rbtscript_report* report);
+
 /* ---- Subscriptions --------------------------------------------------------------------- */
 
 typedef struct robotd_subscription robotd_subscription;

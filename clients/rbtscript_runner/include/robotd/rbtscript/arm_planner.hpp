@@ -1,7 +1,9 @@
-// What an RBTscript move becomes on one arm: the statement, in the script's units (degrees, mm),
-// turned into a planned trajectory (robotd/motion) from given joint positions, on the device's
-// joint limits and the arm model its driver names (DeviceInfo.kinematic_model). The dry run and
-// the real run both plan through here, so what a dry run accepts is what a run does.
+// What a move becomes on one arm: a planned trajectory (robotd/motion) from given joint
+// positions, on the device's joint limits and the arm model its driver names
+// (DeviceInfo.kinematic_model). The one place that reads limits and model from a DeviceInfo: an
+// RBTscript statement (in the script's units, degrees and mm), and the library's moves in SI
+// units (robotd/motion/session_moves.hpp), both plan through here, so what a dry run accepts is
+// what a run does.
 #pragma once
 
 #include <string>
@@ -39,6 +41,14 @@ class ArmPlanner {
   std::size_t joint_count() const { return limits_.min_rad.size(); }
   /// nullptr when the device names no arm model: joint moves only.
   const kinematics::ArmModel* model() const { return model_; }
+
+  /// A joint move to `to_rad`, one value per joint.
+  Result<motion::Trajectory> plan_joints(const motion::Joints& from, const motion::Joints& to_rad,
+                                         const motion::MoveTiming& timing) const;
+  /// A move of the tool to `goal` (in the model's Euler convention): a joint move to the goal's
+  /// IK solution, or the straight line (`timing`'s v and a do not apply to a line).
+  Result<motion::Trajectory> plan_pose(const motion::Joints& from, const kinematics::EulerPose& goal,
+                                       const motion::MoveTiming& timing, bool straight_line) const;
 
   Result<PlannedMove> plan(const MoveJoint& statement, const motion::Joints& from) const;
   Result<PlannedMove> plan(const MovePose& statement, const motion::Joints& from) const;
