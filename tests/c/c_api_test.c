@@ -939,7 +939,7 @@ static bool planned_move_arguments_are_checked(fixture* f) {
   session = acquire(f->client, some, 2, ROBOTD_MODE_POSITION, ROBOTD_BEHAVIOR_KEEP, 2000);
   CHECK(session != NULL);
   CHECK_CALL(ROBOTD_INVALID_ARGUMENT, robotd_session_move_joints(f->client, session, kPostureA, 6, NULL, NULL),
-             "a planned move needs a session on every joint of device 'arm'");
+             "a planned move needs a session on the arm's joints of device 'arm'");
   robotd_session_free(session);
   return true;
 }

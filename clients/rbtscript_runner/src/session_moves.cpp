@@ -23,10 +23,10 @@ Result<rbtscript::ArmPlanner> planner_for(Client& client, const Session& session
   bool every_joint = motors.size() == joints;
   for (std::size_t j = 0; every_joint && j < joints; ++j) every_joint = motors[j] == static_cast<std::int32_t>(j);
   if (!every_joint) {
-    return Error{ErrorCode::kInvalidArgument, "a planned move needs a session on every joint of device '" +
-                                                  session.device() + "' (motors 0.." + std::to_string(joints - 1) +
-                                                  " in order: request no motor ids); this one holds " +
-                                                  std::to_string(motors.size()) + " motor(s)"};
+    return Error{ErrorCode::kInvalidArgument, "a planned move needs a session on the arm's joints of device '" +
+                                                  session.device() + "', motors 0.." + std::to_string(joints - 1) +
+                                                  " in order; this one holds " + std::to_string(motors.size()) +
+                                                  " motor(s)"};
   }
   return planner;
 }
