@@ -28,11 +28,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Run 'robotctl VERB --help' for a verb's options and an example.");
   add_connection_options(app, options);
-  const std::vector<Verb> verbs = {add_devices_verb(app), add_status_verb(app),  add_sessions_verb(app),
-                                   add_acquire_verb(app), add_release_verb(app), add_move_verb(app),
-                                   add_estop_verb(app),   add_echo_verb(app),    add_record_verb(app),
-                                   add_replay_verb(app),  add_run_verb(app),     add_call_verb(app),
-                                   add_top_verb(app)};
+  const std::vector<Verb> verbs = {
+      add_devices_verb(app), add_status_verb(app), add_sessions_verb(app), add_acquire_verb(app), add_release_verb(app),
+      add_move_verb(app),    add_estop_verb(app),  add_echo_verb(app),     add_record_verb(app),  add_replay_verb(app),
+      add_run_verb(app),     add_call_verb(app),   add_top_verb(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -116,7 +116,8 @@ TEST_F(SessionMovesTest, ASessionOnSomeJointsOnlyIsRefused) {
   const auto report = motion::move_joints(client(), some, kBent);
   ASSERT_FALSE(report);
   EXPECT_EQ(report.error().code, ErrorCode::kInvalidArgument);
-  EXPECT_NE(report.error().message.find("the arm's joints of device 'arm'"), std::string::npos) << report.error().message;
+  EXPECT_NE(report.error().message.find("the arm's joints of device 'arm'"), std::string::npos)
+      << report.error().message;
 }
 
 TEST_F(SessionMovesTest, AStopFlagAlreadySetEndsTheMoveWithTheArmHeld) {

@@ -39,11 +39,13 @@ Result<Trajectory> timed_move(const Joints& from, const Joints& to, const Joints
     }
   }
   if (needed_s > profile.duration_s() * (1 + detail::kLimitMargin)) {
-    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": t = " + number(*timing.duration_s) + " s is too short: " + joint_name(worst) +
-                 " would reach " + number(distance[worst] * profile.peak_rate()) + " rad/s and " +
-                 number(distance[worst] * profile.peak_acceleration()) + " rad/s² (max " +
-                 number(limits.max_speed_rad_s[worst]) + " rad/s, " + number(limits.max_acceleration_rad_s2[worst]) +
-                 " rad/s²); this move needs t ≥ " + number(needed_s) + " s"};
+    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": t = " + number(*timing.duration_s) +
+                                                  " s is too short: " + joint_name(worst) + " would reach " +
+                                                  number(distance[worst] * profile.peak_rate()) + " rad/s and " +
+                                                  number(distance[worst] * profile.peak_acceleration()) +
+                                                  " rad/s² (max " + number(limits.max_speed_rad_s[worst]) + " rad/s, " +
+                                                  number(limits.max_acceleration_rad_s2[worst]) +
+                                                  " rad/s²); this move needs t ≥ " + number(needed_s) + " s"};
   }
   const std::string how = (shape == Shape::kPolynomial ? "quintic polynomial" : "trapezoid in thirds") +
                           std::string(" over ") + number(profile.duration_s()) + " s (t given)";
@@ -101,8 +103,9 @@ Result<Trajectory> paced_move(const Joints& from, const Joints& to, const Joints
   }
   const std::size_t count = detail::intervals_covering(duration_s, dt_s);
   if (static_cast<double>(count) > detail::kMaxSamples) {
-    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": at " + pace + " the move would take more than a million samples of " +
-                 number(dt_s) + " s"};
+    return Error{ErrorCode::kInvalidArgument, std::string(what) + ": at " + pace +
+                                                  " the move would take more than a million samples of " +
+                                                  number(dt_s) + " s"};
   }
   // Whole samples only lengthen the move: the trapezoid keeps its ramp and cruises slower.
   const double sampled_s = static_cast<double>(count) * dt_s;

@@ -115,7 +115,8 @@ int run(VerbContext& context, const RunVerbOptions& options) {
 
 Verb add_run_verb(CLI::App& app) {
   auto options = std::make_shared<RunVerbOptions>();
-  CLI::App* command = app.add_subcommand("run", "Run an RBTscript program (MoveJoint, MoveCart, Delay, ...) on a device");
+  CLI::App* command =
+      app.add_subcommand("run", "Run an RBTscript program (MoveJoint, MoveCart, Delay, ...) on a device");
   command->add_option("PROGRAM", options->program_path, "The program file (.rbt)")->required();
   command->add_option("--device", options->device, "The device to run it on (default: robotd's only device)");
   command->add_flag("--dry-run", options->dry_run,

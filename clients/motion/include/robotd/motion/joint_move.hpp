@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "robotd/motion/path_profile.hpp"
-#include "robotd/result.hpp"
 #include "robotd/motion/trajectory.hpp"
+#include "robotd/result.hpp"
 
 namespace robotd::motion {
 
