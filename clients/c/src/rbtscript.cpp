@@ -24,15 +24,22 @@ using robotd::c::take;
 using robotd::c::text_argument;
 using robotd::c::timeout_argument;
 
-namespace {
+namespace robotd::c {
 
-// A problem with the strings that robotd_rbtscript_problem points into.
-struct Problem {
+// A problem with the strings that robotd_rbtscript_problem points into. Not in the anonymous
+// namespace: robotd_rbtscript_report, which has external linkage, holds them.
+struct RbtscriptProblem {
   robotd::rbtscript::SourceLocation location;
   std::string statement;
   std::string message;
   std::string description;
 };
+
+}  // namespace robotd::c
+
+namespace {
+
+using Problem = robotd::c::RbtscriptProblem;
 
 Problem problem_of(const robotd::rbtscript::ParseError& error) {
   return {error.location, "", "found " + error.found + ", expected " + error.expected, error.message()};
@@ -76,13 +83,13 @@ const robotd_rbtscript_options& options_or_defaults(const robotd_rbtscript_optio
 struct robotd_rbtscript_report {
   std::string device;
   bool syntax_errors = false;
-  std::vector<Problem> problems;
+  std::vector<robotd::c::RbtscriptProblem> problems;
   std::size_t moves_planned = 0;
   double pass_seconds = 0;
   robotd_rbtscript_end end = ROBOTD_RBTSCRIPT_NOT_RUN;
   std::uint64_t statements_run = 0;
   std::uint64_t passes = 0;
-  std::optional<Problem> failure;
+  std::optional<robotd::c::RbtscriptProblem> failure;
 };
 
 extern "C" {
