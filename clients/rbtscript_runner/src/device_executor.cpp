@@ -34,7 +34,11 @@ Result<void> DeviceExecutor::follow(const Result<PlannedMove>& move) {
   auto measured = stream(samples, options);
   if (!measured) return measured.error();
   // A speed-only move ends short of its goal by design: the next move starts where it ended.
-  held_ = options.tracking == motion::Tracking::kSpeedOnly ? std::move(measured).value() : planned.positions.back();
+  if (options.tracking == motion::Tracking::kSpeedOnly) {
+    held_ = std::move(measured).value();
+  } else {
+    held_ = planned.positions.back();
+  }
   return {};
 }
 
