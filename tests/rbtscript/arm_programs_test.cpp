@@ -20,6 +20,7 @@
 
 #include "parol6_sim_process.hpp"
 #include "piper_sim_process.hpp"
+#include "pose_tolerances.hpp"
 #include "realman_sim_process.hpp"
 #include "robotd/rbtscript/device_runner.hpp"
 #include "robotd/rbtscript/parser.hpp"
@@ -31,10 +32,7 @@ namespace {
 
 using rbtscript::RunEnd;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kPositionToleranceM = 0.5e-3;     // the 0.5 mm
-constexpr double kAngleToleranceRad = 0.1 * kDeg;  // and 0.1°
-constexpr double kUnmovedRad = 1e-4;               // a dry run sends nothing: the joints stay put
+constexpr double kUnmovedRad = 1e-4;  // a dry run sends nothing: the joints stay put
 
 rbtscript::Program parsed(const std::string& text, const std::string& what) {
   rbtscript::ParseResult result = rbtscript::parse_program(text);

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "parol6_sim_process.hpp"
+#include "pose_tolerances.hpp"
 #include "robotd/rbtscript/device_runner.hpp"
 #include "robotd/rbtscript/parser.hpp"
 #include "robotd_fixture.hpp"
@@ -26,10 +27,6 @@ namespace {
 
 using namespace std::chrono_literals;
 using rbtscript::RunEnd;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kPositionToleranceM = 0.5e-3;     // the 0.5 mm
-constexpr double kAngleToleranceRad = 0.1 * kDeg;  // and 0.1°
 
 rbtscript::Program example(const std::string& name) {
   std::ifstream file(std::string(ROBOTD_RBTSCRIPT_EXAMPLES_DIR) + "/" + name);

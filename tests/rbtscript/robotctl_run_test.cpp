@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "pose_tolerances.hpp"
 #include "robotd_fixture.hpp"
 #include "robotd_process.hpp"
 
@@ -23,7 +24,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kStillRad = 1e-3;  // a held arm's joints wander less than this
 
 class RobotctlRunTest : public RobotdTest {

@@ -21,9 +21,10 @@ namespace {
 using namespace std::chrono_literals;
 
 constexpr double kJointToleranceRad = 0.003;  // the moves' 0.1° arrival, and the sim's settling
-constexpr double kPositionToleranceM = 1e-3;
+constexpr double kMovePositionToleranceM = 1e-3;
 // A PiPER posture clear of its singularities (the wrist is bent): the Cartesian moves start here.
-const std::vector<double> kBent{0.2, 1.0, -1.0, 0.1, 0.6, 0.1};
+/// A posture well clear of the PiPER model's singularities.
+std::vector<double> bent() { return {0.2, 1.0, -1.0, 0.1, 0.6, 0.1}; }
 
 class SessionMovesTest : public RobotdTest {
  protected:
@@ -52,7 +53,7 @@ class SessionMovesTest : public RobotdTest {
     for (std::size_t j = 0; j < q.size(); ++j) EXPECT_NEAR(q[j], target[j], kJointToleranceRad) << "joint " << j;
   }
   void move_to_bent() {
-    const auto report = motion::move_joints(client(), *session_, kBent, {.duration_s = 1.0});
+    const auto report = motion::move_joints(client(), *session_, bent(), {.duration_s = 1.0});
     ASSERT_TRUE(report) << report.error().message;
     ASSERT_EQ(report.value().end, motion::StreamEnd::kCompleted);
   }
@@ -63,12 +64,12 @@ class SessionMovesTest : public RobotdTest {
 
 TEST_F(SessionMovesTest, AJointMoveEndsAtItsTarget) {
   const auto report =
-      motion::move_joints(client(), *session_, kBent, {.speed_percent = 50, .acceleration_percent = 50});
+      motion::move_joints(client(), *session_, bent(), {.speed_percent = 50, .acceleration_percent = 50});
   ASSERT_TRUE(report) << report.error().message;
   EXPECT_EQ(report.value().end, motion::StreamEnd::kCompleted);
   EXPECT_EQ(report.value().fraction_done, 1.0);
   EXPECT_NE(report.value().summary.find("arrived"), std::string::npos) << report.value().summary;
-  expect_joints_at(kBent);
+  expect_joints_at(bent());
 }
 
 TEST_F(SessionMovesTest, APoseMoveAndAStraightLineBringTheToolToTheirGoals) {
@@ -81,15 +82,15 @@ TEST_F(SessionMovesTest, APoseMoveAndAStraightLineBringTheToolToTheirGoals) {
       motion::move_cartesian(client(), *session_, kinematics::pose_of(model_->euler, shifted), {.duration_s = 1.0});
   ASSERT_TRUE(pose_move) << pose_move.error().message;
   EXPECT_EQ(pose_move.value().end, motion::StreamEnd::kCompleted);
-  EXPECT_LT((tool_pose_now().translation() - shifted.translation()).norm(), kPositionToleranceM);
+  EXPECT_LT((tool_pose_now().translation() - shifted.translation()).norm(), kMovePositionToleranceM);
 
   const auto line =
       motion::move_cartesian(client(), *session_, kinematics::pose_of(model_->euler, start),
                              {.duration_s = 1.0, .shape = motion::Shape::kTrapezoid}, motion::CartesianPath::kLine);
   ASSERT_TRUE(line) << line.error().message;
   EXPECT_EQ(line.value().end, motion::StreamEnd::kCompleted);
-  EXPECT_LT((tool_pose_now().translation() - start.translation()).norm(), kPositionToleranceM);
-  expect_joints_at(kBent);  // IK seeded along the line stays on the branch it started on
+  EXPECT_LT((tool_pose_now().translation() - start.translation()).norm(), kMovePositionToleranceM);
+  expect_joints_at(bent());  // IK seeded along the line stays on the branch it started on
 }
 
 TEST_F(SessionMovesTest, AGoalOutOfReachIsRefusedBeforeAnythingMoves) {
@@ -99,7 +100,7 @@ TEST_F(SessionMovesTest, AGoalOutOfReachIsRefusedBeforeAnythingMoves) {
   const auto report = motion::move_cartesian(client(), *session_, far);
   ASSERT_FALSE(report);
   EXPECT_EQ(report.error().code, ErrorCode::kInvalidArgument);
-  expect_joints_at(kBent);
+  expect_joints_at(bent());
 }
 
 TEST_F(SessionMovesTest, ATargetOfTheWrongSizeSaysHowManyJointsTheDeviceHas) {
@@ -113,7 +114,7 @@ TEST_F(SessionMovesTest, ATargetOfTheWrongSizeSaysHowManyJointsTheDeviceHas) {
 TEST_F(SessionMovesTest, ASessionOnSomeJointsOnlyIsRefused) {
   session_.reset();
   Session some = acquire_device("arm", {0, 1});
-  const auto report = motion::move_joints(client(), some, kBent);
+  const auto report = motion::move_joints(client(), some, bent());
   ASSERT_FALSE(report);
   EXPECT_EQ(report.error().code, ErrorCode::kInvalidArgument);
   EXPECT_NE(report.error().message.find("the arm's joints of device 'arm'"), std::string::npos)
@@ -123,7 +124,7 @@ TEST_F(SessionMovesTest, ASessionOnSomeJointsOnlyIsRefused) {
 TEST_F(SessionMovesTest, AStopFlagAlreadySetEndsTheMoveWithTheArmHeld) {
   const std::vector<double> start = joint_state().position;
   const std::atomic<bool> stop{true};
-  const auto report = motion::move_joints(client(), *session_, kBent, {}, &stop);
+  const auto report = motion::move_joints(client(), *session_, bent(), {}, &stop);
   ASSERT_TRUE(report) << report.error().message;
   EXPECT_EQ(report.value().end, motion::StreamEnd::kStopped);
   expect_joints_at(start);
