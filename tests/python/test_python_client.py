@@ -71,8 +71,8 @@ class WithoutRobotdTest(unittest.TestCase):
             robotd.Client(service_timeout=-1)
 
 
-class ClientTest(unittest.TestCase):
-    """Sessions, commands, state, callbacks, safety and device operations, for real."""
+class ArmDaemonTestCase(unittest.TestCase):
+    """One robotd with the simulated arm (planning with the PAROL6 model) and a client, per class."""
 
     @classmethod
     def setUpClass(cls):
@@ -86,6 +86,10 @@ class ClientTest(unittest.TestCase):
     def tearDownClass(cls):
         cls.client.close()
         cls.daemon.__exit__(None, None, None)
+
+
+class ClientTest(ArmDaemonTestCase):
+    """Sessions, commands, state, callbacks, safety and device operations, for real."""
 
     def test_devices_describe_the_arm_and_its_limits(self):
         [arm] = self.client.devices()
@@ -291,7 +295,7 @@ class ClosedLoopTest(unittest.TestCase):
                     session.next_tick(timeout=1.0)
 
 
-class PlannedMotionTest(unittest.TestCase):
+class PlannedMotionTest(ArmDaemonTestCase):
     """robotd.run_rbtscript and session.move_joints / move_cartesian: planned in this process on the
     test arm, which plans as a PAROL6, and streamed through a real robotd."""
 
@@ -303,18 +307,6 @@ class PlannedMotionTest(unittest.TestCase):
     POSE_B = (0.175020425, 0.090879026, 0.084637194, 2.104167985, 0.749339420, -3.030329488)
     PROGRAM_END = tuple(math.radians(d) for d in (10, -60, 100, 0, 20, 0))
 
-    @classmethod
-    def setUpClass(cls):
-        arm = sim_arm()
-        arm["params"]["kinematic_model"] = "parol6"
-        cls.daemon = RobotdDaemon(ROBOTD, [arm]).__enter__()
-        cls.daemon.wait_until_serving()
-        cls.client = robotd.Client(cls.daemon.domain_id, node_name="python_test")
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-        cls.daemon.__exit__(None, None, None)
 
     def assert_arm_at(self, target):
         position = self.client.joint_state("arm").position

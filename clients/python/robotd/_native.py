@@ -264,17 +264,28 @@ def milliseconds(seconds, what):
     return int(round(seconds * 1000))
 
 
-def floats(values, what, count=None):
-    """A sequence of numbers as a C float array, or None for None."""
+def c_array(c_type, values, what, count=None, count_text=", expected {count}"):
+    """A sequence of numbers as a C array of c_type, or None for None; count_text says what a
+    wrong length should have been."""
     if values is None:
         return None
     try:
-        array = (c_float * len(values))(*values)
+        array = (c_type * len(values))(*values)
     except TypeError:
         raise TypeError(f"{what}: a sequence of numbers, not {type(values).__name__}") from None
     if count is not None and len(values) != count:
-        raise ValueError(f"{what}: {len(values)} values for {count} motors")
+        raise ValueError(f"{what}: {len(values)} values" + count_text.format(count=count))
     return array
+
+
+def floats(values, what, count=None):
+    """A sequence of numbers as a C float array, or None for None."""
+    return c_array(c_float, values, what, count, " for {count} motors")
+
+
+def doubles(values, what, count=None):
+    """A sequence of numbers as a C double array, or None for None."""
+    return c_array(c_double, values, what, count)
 
 
 def int32s(values, what):

@@ -103,13 +103,3 @@ def move(call_move, timing, stop):
     raw = _native.MoveReportStruct()
     stoppable(lambda: call_move(options, raw), stop_flag, stop)
     return move_report(raw)
-
-
-def doubles(values, what, count=None):
-    try:
-        array = (c_double * len(values))(*values)
-    except TypeError:
-        raise TypeError(f"{what}: a sequence of numbers, not {type(values).__name__}") from None
-    if count is not None and len(values) != count:
-        raise ValueError(f"{what}: {len(values)} values, expected {count}")
-    return array

@@ -3,7 +3,7 @@ import time
 from ctypes import byref, c_char_p, c_double, c_float, c_int, c_int32, c_size_t, c_void_p
 
 from . import _native
-from ._native import check, floats, int32s, lib, milliseconds, optional_text, pointer
+from ._native import check, doubles, floats, int32s, lib, milliseconds, optional_text, pointer
 from .client import Client
 from .errors import Refused
 from .types import Behavior, LowRateAction, Mode
@@ -171,7 +171,7 @@ class Session:
         the move with the arm held (MoveReport.stopped). Raises InvalidArgument before anything
         moves for a target out of the limits or a move too fast, Refused on an e-stop or a fault."""
         from . import motion
-        values = motion.doubles(target, "target")
+        values = doubles(target, "target")
         handle = self._live_handle()
 
         def call(options, report):
@@ -186,7 +186,7 @@ class Session:
         joint move (RBTscript MovePose); `line=True`: a straight line, IK along it, refused before
         a singularity or a limit (MoveCart; takes only t and func). Otherwise as move_joints."""
         from . import motion
-        values = motion.doubles(pose, "pose (x, y, z in m, three angles in rad)", 6)
+        values = doubles(pose, "pose (x, y, z in m, three angles in rad)", 6)
         goal = _native.Pose((c_double * 3)(*values[:3]), (c_double * 3)(*values[3:]))
         handle = self._live_handle()
         if line and (v is not None or a is not None):
